@@ -1,0 +1,132 @@
+// cdsim: command-line front of the constant-depth scan unit simulator.
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <unistd.h>
+
+#include "evaluate.hpp"
+#include "report.hpp"
+#include "scene.hpp"
+#include "widths.hpp"
+
+namespace {
+
+using namespace cdsim;
+
+struct CommonOptions {
+  std::string scene = "default";
+  std::string designs;
+  std::vector<std::string> settings;
+};
+
+void add_common(CLI::App* app, CommonOptions& options) {
+  app->add_option("--scene", options.scene, "'default' (embedded corridor) or a .tri triangle list")
+      ->capture_default_str();
+  app->add_option("--design", options.designs,
+                  "comma-separated designs (default: all): cd-none, cd-linear, cd-dense2, "
+                  "cd-dense4, cd-dense2-linear, divide");
+  app->add_option("--set", options.settings,
+                  "NAME=VALUE: change a width or microarchitecture parameter (see 'cdsim widths'); "
+                  "repeatable");
+}
+
+Widths widths_from(const CommonOptions& options) {
+  Widths widths;
+  for (const auto& s : options.settings) apply_setting(widths, s);
+  validate(widths);
+  return widths;
+}
+
+int run_command(const CommonOptions& options, const std::string& json_path, bool show_worst) {
+  const Widths widths = widths_from(options);
+  const std::vector<Design> designs = parse_design_list(options.designs);
+  const PreparedScene scene = prepare(load_scene(options.scene), widths);
+  std::cout << provenance(scene.scene, widths) << '\n';
+  std::vector<DesignResult> results;
+  for (const Design& d : designs) {
+    if (isatty(fileno(stderr))) fmt::print(stderr, "running {} ...\r", d.name);
+    results.push_back(evaluate(scene, d, widths));
+  }
+  std::cout << results_table(results, widths);
+  if (show_worst) std::cout << worst_pixels(results, scene.scene, widths);
+  if (!json_path.empty()) {
+    std::ofstream out(json_path);
+    if (!out) throw std::runtime_error(fmt::format("{}: cannot write", json_path));
+    out << results_json(scene.scene, widths, results).dump(2) << '\n';
+    std::cout << "wrote " << json_path << '\n';
+  }
+  return 0;
+}
+
+int bench_command(const CommonOptions& options, double seconds) {
+  const Widths widths = widths_from(options);
+  const std::vector<Design> designs = parse_design_list(options.designs);
+  const PreparedScene scene = prepare(load_scene(options.scene), widths);
+  std::cout << provenance(scene.scene, widths);
+  fmt::print("single-threaded model throughput, error measurement off, at least {} s per design\n\n",
+             seconds);
+  for (const Design& d : designs) {
+    using clock = std::chrono::steady_clock;
+    const auto start = clock::now();
+    int64_t pixels = 0, passes = 0;
+    double elapsed = 0;
+    do {
+      pixels += evaluate(scene, d, widths, false).pixels;
+      ++passes;
+      elapsed = std::chrono::duration<double>(clock::now() - start).count();
+    } while (elapsed < seconds);
+    fmt::print("{:<17} {:>4} passes {:>11} pixels in {:6.2f} s  {:8.1f} M pixels/s\n", d.name,
+               passes, pixels, elapsed, double(pixels) / elapsed / 1e6);
+  }
+  return 0;
+}
+
+int widths_command(const CommonOptions& options) {
+  const Widths widths = widths_from(options);
+  fmt::print("{:<16} {:>7} {:>7} {:>7}  {}\n", "parameter", "value", "min", "max", "meaning");
+  for (const auto& p : param_table())
+    fmt::print("{:<16} {:>7} {:>7} {:>7}  {}\n", p.name, widths.*(p.field), p.min_value,
+               p.max_value, p.meaning);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"cdsim: cycle-level simulator of the constant-depth scan texture unit"};
+  app.require_subcommand(0, 1);
+  CommonOptions run_options, bench_options, widths_options;
+  std::string json_path;
+  double bench_seconds = 1.0;
+
+  CLI::App* run = app.add_subcommand("run", "run a scene through the designs (the default command)");
+  add_common(run, run_options);
+  run->add_option("--json", json_path, "also write the results as JSON to this file");
+  bool show_worst = false;
+  run->add_flag("--worst", show_worst, "print each design's worst pixel");
+
+  CLI::App* bench = app.add_subcommand("bench", "model throughput per design, in M pixels/s");
+  add_common(bench, bench_options);
+  bench->add_option("--seconds", bench_seconds, "minimum time per design")->check(CLI::PositiveNumber);
+
+  CLI::App* widths = app.add_subcommand("widths", "list the width and microarchitecture parameters");
+  widths->add_option("--set", widths_options.settings, "NAME=VALUE, as for run");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  try {
+    if (*bench) return bench_command(bench_options, bench_seconds);
+    if (*widths) return widths_command(widths_options);
+    return run_command(run_options, json_path, show_worst);
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "cdsim: error: {}\n", e.what());
+    return 2;
+  }
+}

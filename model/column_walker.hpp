@@ -1,0 +1,41 @@
+// Column walker: per column (row, when y-major) the offset o, the rounded line
+// shift r(o) = round(density g o), the signed distance t to the line and the
+// covered span; per pixel the line index and u_line = T_k + o S_k.
+#pragma once
+
+#include <cstdint>
+
+#include "coverage.hpp"
+#include "setup_engine.hpp"
+
+namespace cdsim {
+
+struct ColumnState {
+  int64_t offset = 0;        // o, columns from the reference column
+  int64_t major = 0;         // pixel index along the walked axis
+  int64_t line_shift = 0;    // r(o) = round(density * g * o), ties toward +inf
+  int direction = 0;         // sign(t): which neighbour line the correction uses
+  int64_t weight = 0;        // |t| in d_frac fraction bits (t in line spacings)
+  Span span;                 // covered pixels along the column, clipped to the box
+};
+
+ColumnState walk_column(const Setup& setup, int64_t offset, const Widths& widths);
+
+// Line index of the pixel minor_index in this column.
+inline int64_t line_index(const Setup& setup, const ColumnState& column, int64_t minor_index) {
+  return setup.density * (minor_index - setup.minor_lo) - column.line_shift;
+}
+
+// u_line(k, o) in max(t_frac, s_frac) fraction bits; exact, no narrowing.
+struct LineValue {
+  int64_t u = 0, v = 0;
+};
+inline int accumulator_frac(const Widths& w) { return w.t_frac > w.s_frac ? w.t_frac : w.s_frac; }
+inline LineValue line_value(const TableEntry& e, int64_t offset, const Widths& w) {
+  const int frac = accumulator_frac(w);
+  const int t_align = frac - w.t_frac, s_align = frac - w.s_frac;
+  return {(e.t_u << t_align) + offset * (e.s_u << s_align),
+          (e.t_v << t_align) + offset * (e.s_v << s_align)};
+}
+
+}  // namespace cdsim

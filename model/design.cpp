@@ -1,0 +1,57 @@
+#include "design.hpp"
+
+#include <fmt/format.h>
+
+#include <stdexcept>
+
+namespace cdsim {
+
+const std::vector<Design>& all_designs() {
+  using K = Design::Kind;
+  static const std::vector<Design> designs = {
+      {"cd-none", K::ConstantDepth, 1, false, "constant-depth lines, no correction"},
+      {"cd-linear", K::ConstantDepth, 1, true, "constant-depth lines, linear correction"},
+      {"cd-dense2", K::ConstantDepth, 2, false, "2 lines per pixel, no correction"},
+      {"cd-dense4", K::ConstantDepth, 4, false, "4 lines per pixel, no correction"},
+      {"cd-dense2-linear", K::ConstantDepth, 2, true, "2 lines per pixel, linear correction"},
+      {"divide", K::Divide, 1, false, "exact per-pixel reciprocal, one pixel per clock"},
+  };
+  return designs;
+}
+
+const Design& find_design(const std::string& name) {
+  for (const auto& d : all_designs())
+    if (d.name == name) return d;
+  std::string known;
+  for (const auto& d : all_designs()) known += " " + d.name;
+  throw std::invalid_argument(fmt::format("unknown design '{}'; known:{}", name, known));
+}
+
+std::vector<Design> parse_design_list(const std::string& list) {
+  if (list.empty()) return all_designs();
+  std::vector<Design> out;
+  size_t start = 0;
+  while (start <= list.size()) {
+    const size_t comma = list.find(',', start);
+    const std::string name = list.substr(start, comma == std::string::npos ? comma : comma - start);
+    out.push_back(find_design(name));
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return out;
+}
+
+namespace flag {
+const char* name(int bit) {
+  switch (bit) {
+    case 0: return "table_saturated";
+    case 1: return "output_saturated";
+    case 2: return "depth_range";
+    case 3: return "banded";
+    case 4: return "neighbour_dropped";
+  }
+  return "unknown";
+}
+}  // namespace flag
+
+}  // namespace cdsim

@@ -1,0 +1,38 @@
+// The datapath designs cdsim compares, by the names the CLI and reports use.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace cdsim {
+
+struct Design {
+  enum class Kind { ConstantDepth, Divide };
+  std::string name;
+  Kind kind = Kind::ConstantDepth;
+  int density = 1;          // constant-depth lines per pixel (method 1: 2, 4)
+  bool correction = false;  // linear correction between neighbouring lines (method 2)
+  std::string summary;
+};
+
+const std::vector<Design>& all_designs();
+// Throws std::invalid_argument listing the known names.
+const Design& find_design(const std::string& name);
+// "a,b,c" -> designs; empty text -> all.
+std::vector<Design> parse_design_list(const std::string& list);
+
+// Sticky per-triangle flags; a fragment carries the subset raised by its own pixel.
+// Saturation is raised where a saturated value reaches an output: a table entry
+// that saturated but that no fragment uses changes nothing and raises nothing.
+namespace flag {
+inline constexpr uint32_t kTableSaturated = 1u << 0;   // T or S of some line saturated
+inline constexpr uint32_t kOutputSaturated = 1u << 1;  // an output u or v saturated
+inline constexpr uint32_t kDepthRange = 1u << 2;       // a 1/w left its format (<= 0 or underflow)
+inline constexpr uint32_t kBanded = 1u << 3;           // more lines than the table holds: walked in bands
+inline constexpr uint32_t kNeighbourDropped = 1u << 4; // correction skipped: the neighbour line was flagged
+inline constexpr int kCount = 5;
+const char* name(int bit);
+}  // namespace flag
+
+}  // namespace cdsim

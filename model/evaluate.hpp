@@ -1,0 +1,60 @@
+// Runs a scene through one design and measures speed, cost and error (SPEC §5, §8).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "design.hpp"
+#include "scan_unit.hpp"
+#include "scene.hpp"
+
+namespace cdsim {
+
+struct PreparedScene {
+  Scene scene;
+  std::vector<UnitTriangle> unit;  // snapped and quantised, one per scene triangle
+};
+
+// Validates and snaps every triangle; throws InputError naming the first bad one.
+PreparedScene prepare(const Scene& scene, const Widths& widths);
+
+struct ErrorStats {
+  double mean = 0, rms = 0, p99 = 0, max = 0;  // texels, per pixel max(|du|, |dv|)
+  double footprint_max = 0;    // max of error / max(1, rho)
+  double texel_mismatch = 0;   // share of pixels whose nearest texel differs from exact
+  double over_lsb = 0;         // share of pixels with error > 2^-out_frac
+};
+
+// The pixel with the largest error, to make a bad figure easy to chase.
+struct WorstPixel {
+  int64_t triangle = -1;
+  Fragment fragment;
+  double exact_u = 0, exact_v = 0, error = 0;
+};
+
+struct DesignResult {
+  Design design;
+  int64_t triangles = 0, pixels = 0;
+  int64_t cycles = 0, setup_cycles = 0, fill_cycles = 0, walk_cycles = 0;
+  int64_t lines = 0, banded_triangles = 0, x_major_triangles = 0, y_major_triangles = 0;
+  int table_depth = 0, table_word_bits = 0;
+  int64_t table_bits = 0, table_high_water = 0;
+  ErrorStats error;
+  std::array<int64_t, flag::kCount> flagged_triangles{};  // triangles raising each flag
+  WorstPixel worst;
+  double pixels_per_clock() const { return cycles ? double(pixels) / double(cycles) : 0.0; }
+};
+
+// Per-pixel error of one fragment against the exact reference.
+struct PixelError {
+  double texels = 0, footprint = 0;
+  bool texel_mismatch = false;
+};
+PixelError pixel_error(const Fragment& fragment, const struct ExactSample& exact, int out_frac);
+
+DesignResult evaluate(const PreparedScene& scene, const Design& design, const Widths& widths,
+                      bool measure_error = true);
+
+}  // namespace cdsim

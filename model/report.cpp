@@ -1,0 +1,109 @@
+#include "report.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "build_info.hpp"
+
+namespace cdsim {
+
+std::string build_id() {
+  return fmt::format("cdsim {} ({}, {})", kBuildRevision, kBuildCompiler, kBuildType);
+}
+
+std::string provenance(const Scene& scene, const Widths& widths) {
+  return fmt::format("scene: {} ({} triangles; {})\nwidths: {}\nseed: none (deterministic)\nbuild: {}\n",
+                     scene.name, scene.triangles.size(), scene.description, describe(widths),
+                     build_id());
+}
+
+namespace {
+
+std::string flag_summary(const DesignResult& r) {
+  std::string out;
+  for (int bit = 0; bit < flag::kCount; ++bit) {
+    const int64_t count = r.flagged_triangles[size_t(bit)];
+    if (count == 0) continue;
+    if (!out.empty()) out += ' ';
+    out += fmt::format("{}:{}", flag::name(bit), count);
+  }
+  return out.empty() ? "-" : out;
+}
+
+}  // namespace
+
+std::string results_table(const std::vector<DesignResult>& results, const Widths& widths) {
+  std::string out = fmt::format(
+      "{:<17} {:>9} {:>10} {:>6} {:>6} {:>10} {:>9} {:>9} {:>9} {:>9} {:>8}  {}\n", "design",
+      "pixels", "cycles", "px/clk", "depth", "table_bits", "mean_err", "p99_err", "max_err",
+      "fp_max", "texel%", "flags (triangles)");
+  for (const DesignResult& r : results) {
+    out += fmt::format("{:<17} {:>9} {:>10} {:>6.3f} {:>6} {:>10} {:>9.2e} {:>9.2e} {:>9.2e} {:>9.2e} {:>8.4f}  {}\n",
+                       r.design.name, r.pixels, r.cycles, r.pixels_per_clock(), r.table_depth,
+                       r.table_bits, r.error.mean, r.error.p99, r.error.max,
+                       r.error.footprint_max, 100.0 * r.error.texel_mismatch, flag_summary(r));
+  }
+  out += fmt::format("errors in texels against the exact reference (max(|du|,|dv|) per pixel); "
+                     "texel% = pixels whose nearest texel differs; output LSB = 2^-{}\n",
+                     widths.out_frac);
+  return out;
+}
+
+std::string worst_pixels(const std::vector<DesignResult>& results, const Scene& scene,
+                         const Widths& widths) {
+  std::string out = "worst pixel per design:\n";
+  const double lsb = std::ldexp(1.0, -widths.out_frac);
+  for (const DesignResult& r : results) {
+    if (r.worst.triangle < 0) continue;
+    const Fragment& f = r.worst.fragment;
+    out += fmt::format("  {:<17} triangle {} ({}) pixel ({}, {}): u,v = ({:.4f}, {:.4f}) exact ({:.4f}, {:.4f}) flags {:#x}\n",
+                       r.design.name, r.worst.triangle,
+                       scene.triangles[size_t(r.worst.triangle)].origin, f.x, f.y, double(f.u) * lsb,
+                       double(f.v) * lsb, r.worst.exact_u, r.worst.exact_v, f.flags);
+  }
+  return out;
+}
+
+nlohmann::json results_json(const Scene& scene, const Widths& widths,
+                            const std::vector<DesignResult>& results) {
+  nlohmann::json j;
+  j["scene"] = {{"name", scene.name},
+                {"description", scene.description},
+                {"triangles", scene.triangles.size()},
+                {"resolution", {scene.width, scene.height}}};
+  for (const auto& p : param_table()) j["widths"][p.name] = widths.*(p.field);
+  j["build"] = build_id();
+  j["seed"] = nullptr;
+  j["designs"] = nlohmann::json::array();
+  for (const DesignResult& r : results) {
+    nlohmann::json d;
+    d["name"] = r.design.name;
+    d["pixels"] = r.pixels;
+    d["cycles"] = r.cycles;
+    d["pixels_per_clock"] = r.pixels_per_clock();
+    d["cycle_breakdown"] = {{"setup", r.setup_cycles}, {"fill", r.fill_cycles}, {"walk", r.walk_cycles}};
+    d["table_depth"] = r.table_depth;
+    d["table_word_bits"] = r.table_word_bits;
+    d["table_bits"] = r.table_bits;
+    d["table_high_water"] = r.table_high_water;
+    d["lines_filled"] = r.lines;
+    d["triangles"] = r.triangles;
+    d["banded_triangles"] = r.banded_triangles;
+    d["x_major_triangles"] = r.x_major_triangles;
+    d["y_major_triangles"] = r.y_major_triangles;
+    d["error"] = {{"mean", r.error.mean},
+                  {"rms", r.error.rms},
+                  {"p99", r.error.p99},
+                  {"max", r.error.max},
+                  {"footprint_max", r.error.footprint_max},
+                  {"texel_mismatch", r.error.texel_mismatch},
+                  {"over_lsb", r.error.over_lsb}};
+    for (int bit = 0; bit < flag::kCount; ++bit)
+      d["flags"][flag::name(bit)] = r.flagged_triangles[size_t(bit)];
+    j["designs"].push_back(d);
+  }
+  return j;
+}
+
+}  // namespace cdsim

@@ -1,0 +1,53 @@
+// The timing layer: runs triangles through the four blocks (setup engine,
+// scanline table, column walker, correction adder) and counts cycles exactly
+// as docs/microarchitecture.md describes. The RTL must match these counts
+// triangle by triangle.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "design.hpp"
+#include "scanline_table.hpp"
+#include "triangle.hpp"
+#include "widths.hpp"
+
+namespace cdsim {
+
+struct Fragment {
+  int32_t x = 0, y = 0;
+  int64_t u = 0, v = 0;  // output format (out_int.out_frac)
+  uint32_t flags = 0;
+};
+
+struct TriangleRecord {
+  int64_t cycles = 0;  // setup + fill + walk
+  int64_t setup_cycles = 0, fill_cycles = 0, walk_cycles = 0;
+  int64_t lines = 0;   // table entries filled, all bands
+  int64_t bands = 0;
+  int64_t pixels = 0;
+  bool x_major = true;
+  uint32_t flags = 0;
+};
+
+class ScanUnit {
+ public:
+  ScanUnit(const Design& design, const Widths& widths, int viewport_width, int viewport_height);
+
+  // Appends the triangle's fragments, in emission order, to *fragments.
+  TriangleRecord run(const UnitTriangle& triangle, std::vector<Fragment>* fragments);
+
+  const ScanlineTable& table() const { return table_; }
+  const Design& design() const { return design_; }
+
+ private:
+  TriangleRecord run_constant_depth(const struct Setup& setup, std::vector<Fragment>* fragments);
+  TriangleRecord run_divide(const struct Setup& setup, std::vector<Fragment>* fragments);
+
+  Design design_;
+  Widths widths_;
+  int viewport_width_, viewport_height_;
+  ScanlineTable table_;
+};
+
+}  // namespace cdsim

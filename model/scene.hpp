@@ -1,0 +1,65 @@
+// Scene front end (SPEC §10): transform, homogeneous clipping, perspective
+// divide, viewport. It models nothing else; snapping happens at the unit's
+// input (triangle.hpp) because subpixel_bits is a width.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "triangle.hpp"
+
+namespace cdsim {
+
+struct Camera {
+  glm::dvec3 eye{0, 0, 0};
+  glm::dvec3 target{0, 0, -1};
+  glm::dvec3 up{0, 1, 0};
+  double fov_y_degrees = 60;
+  double near_plane = 0.05;
+};
+
+struct MeshVertex {
+  glm::dvec3 position{0};
+  glm::dvec2 texcoord{0};  // normalised (s, t); may exceed [0, 1] when tiling
+};
+
+struct Mesh {
+  std::vector<MeshVertex> vertices;
+  std::vector<std::array<uint32_t, 3>> triangles;
+  std::vector<glm::ivec2> texture_size;  // per triangle, texels
+};
+
+struct Scene {
+  std::string name;
+  std::string description;  // how to make it again: camera, source
+  int width = 0, height = 0;
+  std::vector<ScreenTriangle> triangles;
+};
+
+// Guard band: clipping keeps x and y within this many half-viewports of the
+// centre, so snapped coordinates stay inside 16.8 while every clipped edge lies
+// outside the viewport (which keeps shared edges watertight on screen).
+inline constexpr double kGuardBand = 3.0;
+
+Scene project(const Mesh& mesh, const Camera& camera, int width, int height,
+              const std::string& name);
+
+// The embedded default scene: a textured corridor, 1920x1080, camera rolled and
+// pitched so that both line orientations and a floor reaching the horizon appear.
+Mesh default_mesh();
+Camera default_camera();
+Scene default_scene();
+
+// A list of screen-space triangles that bypass the front end, one per line:
+// "x y w u v" for each of the three vertices (15 numbers); '#' starts a comment;
+// a line "resolution W H" sets the viewport. Throws InputError naming file:line.
+Scene load_triangle_file(const std::string& path);
+
+// "default" or a .tri path.
+Scene load_scene(const std::string& spec);
+
+}  // namespace cdsim

@@ -1,0 +1,186 @@
+#include "setup_engine.hpp"
+
+#include <algorithm>
+#include <cstring>
+
+namespace cdsim {
+
+using fx::Wide;
+
+namespace {
+
+struct Float32 {
+  int exponent;       // biased
+  int64_t mantissa;   // 24 bits, hidden bit set
+};
+
+Float32 unpack(uint32_t bits) {
+  return {static_cast<int>((bits >> 23) & 0xff), static_cast<int64_t>((bits & 0x7fffff) | 0x800000)};
+}
+
+int log2_exact(int value) {
+  int bits = 0;
+  while ((1 << bits) < value) ++bits;
+  return bits;
+}
+
+// round(numerator / denominator), ties toward +inf, denominator != 0.
+Wide divide_nearest(Wide numerator, Wide denominator) {
+  if (denominator < 0) numerator = -numerator, denominator = -denominator;
+  return fx::floor_div(2 * numerator + denominator, 2 * denominator);
+}
+
+}  // namespace
+
+Setup setup_engine(const UnitTriangle& t, const Design& design, const Widths& w,
+                   int viewport_width, int viewport_height) {
+  Setup s;
+  s.density = design.density;
+  s.correction = design.correction;
+  s.edges = make_edges(t, w.subpixel_bits);
+  s.box = bounding_box(t, w.subpixel_bits, viewport_width, viewport_height);
+  if (s.edges.det == 0 || s.box.empty()) return s;
+  s.empty = false;
+
+  // Per-triangle normalisation of 1/w: align the three mantissas to the largest
+  // exponent. The shared exponent itself cancels in u = U/q and is dropped.
+  std::array<Float32, 3> qf{};
+  int max_exponent = 0;
+  for (size_t i = 0; i < 3; ++i) {
+    qf[i] = unpack(t.vertex[i].q_float);
+    max_exponent = std::max(max_exponent, qf[i].exponent);
+  }
+  std::array<Wide, 3> q{}, uq{}, vq{};
+  for (size_t i = 0; i < 3; ++i) {
+    q[i] = fx::shift_round(qf[i].mantissa, max_exponent - qf[i].exponent + 24 - w.q_bits,
+                           fx::Round::Nearest);
+    if (q[i] == 0) s.flags |= flag::kDepthRange;
+    uq[i] = q[i] * t.vertex[i].u;
+    vq[i] = q[i] * t.vertex[i].v;
+  }
+
+  // Plane equations scaled by det (which cancels in every ratio we need), with
+  // the sign chosen so that q * |det| > 0.
+  const auto& v = t.vertex;
+  const Wide dx1 = v[1].x - v[0].x, dy1 = v[1].y - v[0].y;
+  const Wide dx2 = v[2].x - v[0].x, dy2 = v[2].y - v[0].y;
+  const Wide det = s.edges.det;
+  const Wide sign = det < 0 ? -1 : 1;
+  const int sp = w.subpixel_bits;
+  const int64_t half = int64_t{1} << (sp - 1);
+  const Wide ref_x = (Wide{s.box.x_lo} << sp) + half - v[0].x;
+  const Wide ref_y = (Wide{s.box.y_lo} << sp) + half - v[0].y;
+  struct Exact {
+    Wide at_ref, per_x, per_y;
+  };
+  const auto plane = [&](const std::array<Wide, 3>& a) {
+    const Wide da1 = a[1] - a[0], da2 = a[2] - a[0];
+    const Wide coef_x = sign * (da1 * dy2 - da2 * dy1);
+    const Wide coef_y = sign * (da2 * dx1 - da1 * dx2);
+    return Exact{sign * a[0] * det + coef_x * ref_x + coef_y * ref_y, coef_x << sp, coef_y << sp};
+  };
+  const Exact eq = plane(q), eu = plane(uq), ev = plane(vq);
+
+  // Orientation: the constant-depth lines run along the axis in which q changes least.
+  const Wide abs_qx = eq.per_x < 0 ? -eq.per_x : eq.per_x;
+  const Wide abs_qy = eq.per_y < 0 ? -eq.per_y : eq.per_y;
+  s.x_major = abs_qx <= abs_qy;
+  const auto major = [&](const Exact& e) { return s.x_major ? e.per_x : e.per_y; };
+  const auto minor = [&](const Exact& e) { return s.x_major ? e.per_y : e.per_x; };
+  const int gf = w.g_frac;
+  s.g = minor(eq) == 0 ? 0
+                       : static_cast<int64_t>(divide_nearest(-major(eq) * (Wide{1} << gf), minor(eq)));
+
+  // Shared shift: q * |det| peaks at a vertex, and after the shift it fits plane_bits.
+  Wide q_peak = 0;
+  for (size_t i = 0; i < 3; ++i) q_peak = std::max(q_peak, q[i] * (det < 0 ? -det : det));
+  s.shift = fx::bit_length(q_peak) - w.plane_bits;
+  const int line_shift = log2_exact(s.density);
+  const auto normalise = [&](const Exact& e) {
+    Plane p;
+    p.at_ref = fx::shift_round(e.at_ref, s.shift, fx::Round::Nearest);
+    p.per_major = fx::shift_round(major(e), s.shift, fx::Round::Nearest);
+    p.per_minor = fx::shift_round(minor(e), s.shift, fx::Round::Nearest);
+    p.per_line = fx::shift_round(minor(e), s.shift + line_shift, fx::Round::Nearest);
+    return p;
+  };
+  s.q = normalise(eq);
+  s.u = normalise(eu);
+  s.v = normalise(ev);
+  s.step_u = fx::shift_round(major(eu) * (Wide{1} << gf) + Wide{s.g} * minor(eu), s.shift + gf,
+                             fx::Round::Nearest);
+  s.step_v = fx::shift_round(major(ev) * (Wide{1} << gf) + Wide{s.g} * minor(ev), s.shift + gf,
+                             fx::Round::Nearest);
+
+  // Walk geometry along the chosen axes.
+  s.major_lo = s.x_major ? s.box.x_lo : s.box.y_lo;
+  s.major_count = s.x_major ? s.box.width() : s.box.height();
+  s.minor_lo = s.x_major ? s.box.y_lo : s.box.x_lo;
+  s.minor_hi = s.x_major ? s.box.y_hi : s.box.x_hi;
+
+  // Lines the covered pixels use. The continuous line coordinate
+  // kappa = (minor - minor_ref) - g (major - major_ref) is affine, so over the
+  // triangle it lies between its values at the vertices; a pixel's line index is
+  // within 1/2 of density * kappa. Values are scaled by 2^(subpixel_bits + g_frac).
+  const Wide ref_major = s.x_major ? ref_x : ref_y;
+  const Wide ref_minor = s.x_major ? ref_y : ref_x;
+  Wide kappa_lo = 0, kappa_hi = 0;
+  for (size_t i = 0; i < 3; ++i) {
+    const Wide vertex_major = (s.x_major ? v[i].x - v[0].x : v[i].y - v[0].y) - ref_major;
+    const Wide vertex_minor = (s.x_major ? v[i].y - v[0].y : v[i].x - v[0].x) - ref_minor;
+    const Wide kappa = s.density * ((vertex_minor << gf) - Wide{s.g} * vertex_major);
+    kappa_lo = i == 0 ? kappa : std::min(kappa_lo, kappa);
+    kappa_hi = i == 0 ? kappa : std::max(kappa_hi, kappa);
+  }
+  const Wide scale = Wide{1} << (sp + gf);
+  Wide line_lo = fx::ceil_div(2 * kappa_lo - scale, 2 * scale);
+  Wide line_hi = fx::ceil_div(2 * kappa_hi + scale, 2 * scale) - 1;
+  // The box bounds them too: line = density * minor_offset - round(density g o).
+  const auto column_round = [&](int64_t offset) {
+    return fx::floor_div(Wide{s.density} * s.g * offset + (Wide{1} << (gf - 1)), Wide{1} << gf);
+  };
+  const Wide round_first = 0, round_last = column_round(s.major_count - 1);
+  line_lo = std::max(line_lo, -std::max(round_first, round_last));
+  line_hi = std::min(line_hi, Wide{s.density} * (s.minor_hi - s.minor_lo) -
+                                  std::min(round_first, round_last));
+  s.pixel_line_lo = static_cast<int64_t>(line_lo);
+  s.pixel_line_hi = static_cast<int64_t>(line_hi);
+  return s;
+}
+
+Reciprocal reciprocal(Wide q, int recip_bits) {
+  Reciprocal r;
+  if (q <= 0) {
+    r.out_of_range = true;
+    q = 1;
+  }
+  r.exponent = fx::bit_length(q) - 1;
+  // Mantissa of q in [1, 2) with recip_bits fraction bits, truncated.
+  const Wide mantissa_q = r.exponent >= recip_bits ? q >> (r.exponent - recip_bits)
+                                                   : q << (recip_bits - r.exponent);
+  r.mantissa = static_cast<int64_t>((Wide{1} << (2 * recip_bits)) / mantissa_q);
+  return r;
+}
+
+TableEntry fill_line(const Setup& s, int64_t line, const Widths& w) {
+  const Wide q = s.q.at_ref + Wide{line} * s.q.per_line;
+  const Wide u = s.u.at_ref + Wide{line} * s.u.per_line;
+  const Wide v = s.v.at_ref + Wide{line} * s.v.per_line;
+  const Reciprocal r = reciprocal(q, w.recip_bits);
+  // U * (1/q) carries uv_in_frac fraction bits of texels, plus the reciprocal's.
+  const int product_frac = w.recip_bits + r.exponent + w.uv_in_frac;
+  bool saturated = false;
+  const auto to = [&](Wide numerator, const fx::Format& format) {
+    return static_cast<int64_t>(fx::narrow(numerator * r.mantissa, product_frac, format,
+                                           fx::Round::Nearest, fx::Overflow::Saturate, &saturated));
+  };
+  TableEntry e;
+  e.t_u = to(u, w.t_format());
+  e.t_v = to(v, w.t_format());
+  e.s_u = to(s.step_u, w.s_format());
+  e.s_v = to(s.step_v, w.s_format());
+  e.flags = (saturated ? flag::kTableSaturated : 0) | (r.out_of_range ? flag::kDepthRange : 0);
+  return e;
+}
+
+}  // namespace cdsim

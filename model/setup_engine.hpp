@@ -1,0 +1,63 @@
+// Setup engine: plane equations, orientation, slope g, per-triangle
+// normalisation, line range, and the per-line table fill (one reciprocal and
+// four multiplies per line). Plain functions of values; cycles are counted by
+// the caller (scan_unit).
+#pragma once
+
+#include <cstdint>
+
+#include "coverage.hpp"
+#include "design.hpp"
+#include "fixed.hpp"
+#include "widths.hpp"
+
+namespace cdsim {
+
+// Planes of q, U = u q and V = v q, normalised by the triangle's shared shift,
+// at the reference pixel centre and per pixel along the major and minor axis.
+struct Plane {
+  fx::Wide at_ref = 0, per_major = 0, per_minor = 0;
+  fx::Wide per_line = 0;  // per_minor / density
+};
+
+struct Setup {
+  bool empty = true;          // zero area or no pixel centre in the box: nothing to walk
+  bool x_major = true;        // lines are x-major: the walker visits columns
+  int64_t g = 0;              // slope, s2.g_frac
+  int density = 1;            // lines per pixel
+  bool correction = false;
+  PixelBox box;               // pixels to walk, clipped to the viewport
+  int64_t major_lo = 0, major_count = 0;  // walked columns (x-major) or rows
+  int64_t minor_lo = 0, minor_hi = -1;    // the other axis of the box
+  int shift = 0;              // per-triangle normalisation: planes were scaled by 2^-shift
+  Plane q, u, v;
+  fx::Wide step_u = 0, step_v = 0;  // numerators of S: U_major + g U_minor, normalised
+  int64_t pixel_line_lo = 0, pixel_line_hi = -1;  // lines covered pixels can use
+  EdgeSet edges;
+  uint32_t flags = 0;
+};
+
+Setup setup_engine(const UnitTriangle& triangle, const Design& design, const Widths& widths,
+                   int viewport_width, int viewport_height);
+
+// 1/q as mantissa * 2^-(recip_bits + exponent), mantissa in (2^(recip_bits-1), 2^recip_bits].
+struct Reciprocal {
+  int64_t mantissa = 0;
+  int exponent = 0;
+  bool out_of_range = false;  // q <= 0: replaced by the smallest positive q
+};
+Reciprocal reciprocal(fx::Wide q, int recip_bits);
+
+struct TableEntry {
+  int64_t t_u = 0, t_v = 0;  // (u, v) where line k crosses the reference column, T format
+  int64_t s_u = 0, s_v = 0;  // (u, v) step per column along the line, S format
+  // kTableSaturated and/or kDepthRange when this entry left its formats. A
+  // flagged entry raises its flags on every fragment that uses it, and is never
+  // used as a correction neighbour.
+  uint32_t flags = 0;
+};
+
+// Computes table entry k (line k relative to the reference pixel).
+TableEntry fill_line(const Setup& setup, int64_t line, const Widths& widths);
+
+}  // namespace cdsim

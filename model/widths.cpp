@@ -1,0 +1,77 @@
+#include "widths.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace cdsim {
+
+const std::vector<ParamInfo>& param_table() {
+  static const std::vector<ParamInfo> table = {
+#define CDSIM_PARAM(name, def, lo, hi, doc) {#name, def, lo, hi, doc, &Widths::name},
+#include "widths.def"
+#undef CDSIM_PARAM
+  };
+  return table;
+}
+
+void set_param(Widths& widths, const std::string& name, long long value) {
+  const auto& table = param_table();
+  const auto it = std::find_if(table.begin(), table.end(),
+                               [&](const ParamInfo& p) { return name == p.name; });
+  if (it == table.end()) {
+    std::string known;
+    for (const auto& p : table) known += fmt::format(" {}", p.name);
+    throw std::invalid_argument(fmt::format("unknown parameter '{}'; known:{}", name, known));
+  }
+  if (value < it->min_value || value > it->max_value)
+    throw std::invalid_argument(fmt::format("parameter {}={} is out of range [{}, {}] ({})", name,
+                                            value, it->min_value, it->max_value, it->meaning));
+  widths.*(it->field) = static_cast<int>(value);
+}
+
+void apply_setting(Widths& widths, const std::string& assignment) {
+  const auto eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw std::invalid_argument(
+        fmt::format("setting '{}' is not of the form NAME=VALUE", assignment));
+  const std::string name = assignment.substr(0, eq);
+  const std::string text = assignment.substr(eq + 1);
+  size_t used = 0;
+  long long value = 0;
+  try {
+    value = std::stoll(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size())
+    throw std::invalid_argument(
+        fmt::format("setting '{}': value '{}' is not an integer", assignment, text));
+  set_param(widths, name, value);
+}
+
+void validate(const Widths& w) {
+  // The walker accumulates T + o*S in 64 bits at max(t_frac, s_frac) fraction bits,
+  // with o up to 2^14 columns, then the correction adds one more bit.
+  const int frac = std::max(w.t_frac, w.s_frac);
+  const int acc_bits = std::max(w.t_int + frac, w.s_int + frac + 14) + 2;
+  if (acc_bits > 63)
+    throw std::invalid_argument(fmt::format(
+        "widths need a {}-bit walker accumulator (t_int/s_int + max(t_frac, s_frac) + 16); "
+        "the limit is 63",
+        acc_bits));
+  if (w.out_int + w.out_frac > 48)
+    throw std::invalid_argument("out_int + out_frac must not exceed 48 bits");
+}
+
+std::string describe(const Widths& widths) {
+  std::string out;
+  for (const auto& p : param_table()) {
+    if (!out.empty()) out += ' ';
+    out += fmt::format("{}={}", p.name, widths.*(p.field));
+  }
+  return out;
+}
+
+}  // namespace cdsim

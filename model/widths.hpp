@@ -1,0 +1,44 @@
+// Widths and microarchitecture parameters of the unit, from widths.def.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "fixed.hpp"
+
+namespace cdsim {
+
+struct Widths {
+#define CDSIM_PARAM(name, def, lo, hi, doc) int name = def;
+#include "widths.def"
+#undef CDSIM_PARAM
+
+  fx::Format t_format() const { return {t_int, t_frac, true}; }
+  fx::Format s_format() const { return {s_int, s_frac, true}; }
+  fx::Format out_format() const { return {out_int, out_frac, true}; }
+  // Table word: T.u, T.v, S.u, S.v.
+  int table_word_bits() const { return 2 * (t_int + t_frac) + 2 * (s_int + s_frac); }
+};
+
+struct ParamInfo {
+  const char* name;
+  int default_value;
+  int min_value;
+  int max_value;
+  const char* meaning;
+  int Widths::*field;
+};
+
+const std::vector<ParamInfo>& param_table();
+
+// Applies "NAME=VALUE". Throws std::invalid_argument naming the parameter and
+// the allowed range when the name is unknown or the value is out of range.
+void apply_setting(Widths& widths, const std::string& assignment);
+void set_param(Widths& widths, const std::string& name, long long value);
+// Checks combinations that single ranges cannot (for example the accumulator
+// fitting 64 bits). Throws std::invalid_argument.
+void validate(const Widths& widths);
+
+std::string describe(const Widths& widths);  // "subpixel_bits=8 uv_in_frac=8 ..."
+
+}  // namespace cdsim
