@@ -1,0 +1,197 @@
+// Behaviour of the unit on constructed triangles: screen-parallel triangles,
+// both orientations, |g| = 1 and one LSB either side, table overflow, cycle
+// counts worked by hand, and refusal of bad vertices.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <tuple>
+
+#include "test_support.hpp"
+
+namespace cdsim {
+namespace {
+
+double max_error(const std::vector<Fragment>& fragments, const ExactReference& exact, int out_frac) {
+  double worst = 0;
+  for (const Fragment& f : fragments) {
+    const ExactSample x = exact.at_pixel(f.x, f.y);
+    const long double lsb = std::ldexp(1.0L, -out_frac);
+    worst = std::max(worst, double(std::max(std::fabs(f.u * lsb - x.u), std::fabs(f.v * lsb - x.v))));
+  }
+  return worst;
+}
+
+TEST(UnitBehaviour, TriangleParallelToTheScreenIsExactInEveryDesign) {
+  const Widths w;
+  // Equal w; u, v on the 1/256 grid so the inputs are exact; 300 pixels wide.
+  const ScreenTriangle s = testing::screen_triangle(
+      {{{{3.2, 4.7, 7.0, 10.0, 20.0}}, {{310.4, 40.1, 7.0, 900.5, 61.25}}, {{50.3, 250.9, 7.0, -300.75, 812.0}}}});
+  const UnitTriangle t = to_unit(s, w, 0);
+  const ExactReference exact(s, t, w.subpixel_bits);
+  for (const Design& d : all_designs()) {
+    const auto fragments = testing::run_unit(d, w, 400, 300, t);
+    ASSERT_GT(fragments.size(), 1000u);
+    // Only the output rounding remains: half an LSB, plus T and S rounding far below it.
+    EXPECT_LE(max_error(fragments, exact, w.out_frac), std::ldexp(1.0, -w.out_frac)) << d.name;
+  }
+  const ::cdsim::Setup setup = setup_engine(t, find_design("cd-none"), w, 400, 300);
+  EXPECT_TRUE(setup.x_major);
+  EXPECT_EQ(setup.g, 0);
+}
+
+// q = 1/w is a plane; build w at three snapped vertices from q = base + a x + b y.
+ScreenTriangle with_depth_plane(std::array<std::array<double, 2>, 3> xy, double base, double a,
+                                double b) {
+  ScreenTriangle s;
+  for (size_t i = 0; i < 3; ++i) {
+    const double q = base + a * xy[i][0] + b * xy[i][1];
+    s.vertex[i] = {xy[i][0], xy[i][1], 1.0 / q, 40.0 * xy[i][0] + 3.0 * xy[i][1], 7.0 * xy[i][1]};
+  }
+  return s;
+}
+
+TEST(UnitBehaviour, FloorLikeTrianglesAreXMajorAndWallLikeAreYMajor) {
+  const Widths w = testing::wide_widths();
+  const std::array<std::array<double, 2>, 3> xy = {{{10.0, 10.0}, {200.0, 30.0}, {60.0, 180.0}}};
+  const ScreenTriangle floor = with_depth_plane(xy, 0.5, 0.0005, -0.002);  // q changes along y
+  const ScreenTriangle wall = with_depth_plane(xy, 0.5, -0.002, 0.0005);   // q changes along x
+  for (const auto& [s, x_major] : {std::pair{floor, true}, std::pair{wall, false}}) {
+    const UnitTriangle t = to_unit(s, w, 0);
+    for (const Design& d : all_designs()) {
+      const ::cdsim::Setup setup = setup_engine(t, d, w, 256, 256);
+      EXPECT_EQ(setup.x_major, x_major) << d.name;
+      if (d.kind != Design::Kind::ConstantDepth) continue;
+      const testing::IdealConstantDepth ideal(t, setup, w);
+      const auto fragments = testing::run_unit(d, w, 256, 256, t);
+      ASSERT_GT(fragments.size(), 5000u);
+      for (const Fragment& f : fragments) {
+        const auto i = ideal.at_pixel(f.x, f.y);
+        ASSERT_NEAR(std::ldexp(double(f.u), -w.out_frac), double(i.u), 1e-3) << d.name;
+      }
+    }
+  }
+}
+
+TEST(UnitBehaviour, SlopeOfOneAndOneLsbEitherSide) {
+  // g = -q_x / q_y. With g_frac = 8, make q_x / q_y = -255/256, -1 and -257/256
+  // exactly: vertex q values are then exact binary32 numbers.
+  Widths w;
+  w.g_frac = 8;
+  const std::array<std::array<double, 2>, 3> xy = {{{4.0, 6.0}, {120.0, 20.0}, {30.0, 110.0}}};
+  struct Case {
+    double qx;
+    bool x_major;
+    int64_t g;
+  } cases[] = {{255, true, -255}, {256, true, -256}, {257, false, -255}};
+  for (const Case& c : cases) {
+    // q = 1 + (qx x + 256 y) / 2^16 with x, y on the 1/256 grid: exact in binary32.
+    const ScreenTriangle s = with_depth_plane(xy, 1.0, c.qx / 65536.0, 256.0 / 65536.0);
+    const UnitTriangle t = to_unit(s, w, 0);
+    const ExactReference exact(s, t, w.subpixel_bits);
+    for (const Design& d : all_designs()) {
+      const ::cdsim::Setup setup = setup_engine(t, d, w, 160, 160);
+      EXPECT_EQ(setup.x_major, c.x_major) << d.name << " q_x " << c.qx;
+      EXPECT_EQ(setup.g, c.g) << d.name << " q_x " << c.qx;
+      const auto fragments = testing::run_unit(d, w, 160, 160, t);
+      EXPECT_EQ(fragments.size(), testing::brute_force_pixels(t, w, 160, 160).size()) << d.name;
+      // Lines are tilted 45 degrees, so a pixel is up to half a line from its own:
+      // no design may do worse than half the footprint, and linear correction
+      // must do far better.
+      const double bound = d.correction ? 0.05 : (d.kind == Design::Kind::Divide ? 0.01 : 60.0);
+      EXPECT_LT(max_error(fragments, exact, w.out_frac), bound) << d.name << " q_x " << c.qx;
+    }
+  }
+}
+
+std::vector<std::tuple<int32_t, int32_t, int64_t, int64_t>> sorted(const std::vector<Fragment>& fragments) {
+  std::vector<std::tuple<int32_t, int32_t, int64_t, int64_t>> out;
+  for (const auto& f : fragments) out.emplace_back(f.x, f.y, f.u, f.v);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+TEST(UnitBehaviour, TableOverflowGivesTheSamePixelsAndValuesAsADeepTable) {
+  const ScreenTriangle s = testing::screen_triangle(
+      {{{{2.3, 1.7, 1.0, 0.0, 0.0}}, {{190.2, 60.4, 6.0, 800.0, 100.0}}, {{40.6, 170.9, 2.5, 50.0, 700.0}}}});
+  for (const char* name : {"cd-none", "cd-linear", "cd-dense2-linear", "cd-dense4"}) {
+    Widths deep, shallow;
+    deep.table_depth = 4096;
+    shallow.table_depth = 8;
+    const UnitTriangle t = to_unit(s, deep, 0);
+    TriangleRecord deep_record, shallow_record;
+    const auto a = testing::run_unit(find_design(name), deep, 256, 256, t, &deep_record);
+    const auto b = testing::run_unit(find_design(name), shallow, 256, 256, t, &shallow_record);
+    ASSERT_GT(a.size(), 5000u);
+    EXPECT_EQ(sorted(a), sorted(b)) << name;
+    EXPECT_EQ(deep_record.bands, 1) << name;
+    EXPECT_GT(shallow_record.bands, 10) << name;
+    EXPECT_TRUE(shallow_record.flags & flag::kBanded) << name;
+    EXPECT_FALSE(deep_record.flags & flag::kBanded) << name;
+    EXPECT_GT(shallow_record.cycles, deep_record.cycles) << name;
+  }
+}
+
+TEST(UnitBehaviour, CyclesOfAHandWorkedTriangle) {
+  // Right triangle (0,0) (8,0) (0,8) in pixels, constant w: box 8x8 pixels,
+  // g = 0, x-major, 8 pixel lines (rows 0..7). Centres with i + j <= 6 are
+  // covered (i + j = 7 lies on the hypotenuse, which is neither top nor left): 28.
+  const Widths w;  // setup 12, reciprocal latency 4
+  const ScreenTriangle s = testing::screen_triangle(
+      {{{{0, 0, 2.0, 0, 0}}, {{8, 0, 2.0, 64, 0}}, {{0, 8, 2.0, 0, 64}}}});
+  const UnitTriangle t = to_unit(s, w, 0);
+  const std::pair<const char*, int64_t> expected[] = {
+      {"cd-none", 12 + (8 + 4) + 8 + 28},
+      {"cd-linear", 12 + (10 + 4) + 8 + 28},
+      {"cd-dense2", 12 + (15 + 4) + 8 + 28},        // lines 0..14 at half-pixel spacing
+      {"cd-dense2-linear", 12 + (17 + 4) + 8 + 28},
+      {"divide", 12 + 8 + 28 + 4},
+  };
+  for (const auto& [name, cycles] : expected) {
+    TriangleRecord r;
+    const auto fragments = testing::run_unit(find_design(name), w, 64, 64, t, &r);
+    EXPECT_EQ(fragments.size(), 28u) << name;
+    EXPECT_EQ(r.cycles, cycles) << name;
+  }
+}
+
+TEST(UnitBehaviour, ZeroAreaAndEmptyBoxCostOnlySetup) {
+  const Widths w;
+  const ScreenTriangle line = testing::screen_triangle(
+      {{{{1, 1, 1, 0, 0}}, {{9, 5, 1, 0, 0}}, {{17, 9, 1, 0, 0}}}});
+  const ScreenTriangle between_centres = testing::screen_triangle(
+      {{{{1.6, 1.6, 1, 0, 0}}, {{1.9, 1.6, 1, 0, 0}}, {{1.6, 1.9, 1, 0, 0}}}});
+  for (const auto& s : {line, between_centres}) {
+    TriangleRecord r;
+    EXPECT_TRUE(testing::run_unit(find_design("cd-linear"), w, 32, 32, to_unit(s, w, 0), &r).empty());
+    EXPECT_EQ(r.cycles, w.setup_cycles);
+  }
+}
+
+TEST(UnitBehaviour, BadVerticesAreRefusedNamingTheTriangle) {
+  const Widths w;
+  const double nan = std::nan(""), inf = HUGE_VAL;
+  const std::pair<ScreenVertex, const char*> bad[] = {
+      {{nan, 1, 1, 0, 0}, "non-finite"},
+      {{1, inf, 1, 0, 0}, "non-finite"},
+      {{1, 1, 0.0, 0, 0}, "w = 0"},
+      {{1, 1, -2.0, 0, 0}, "w = -2"},
+      {{40000, 1, 1, 0, 0}, "outside"},
+      {{1, 1, 1, 0, 33000}, "texture coordinates"},
+  };
+  for (const auto& [vertex, words] : bad) {
+    ScreenTriangle s = testing::screen_triangle({{{{0, 0, 1, 0, 0}}, {{5, 0, 1, 0, 0}}, {{0, 5, 1, 0, 0}}}});
+    s.vertex[2] = vertex;
+    try {
+      to_unit(s, w, 17);
+      ADD_FAILURE() << "accepted a vertex that should be refused: " << words;
+    } catch (const InputError& e) {
+      const std::string message = e.what();
+      EXPECT_NE(message.find("triangle 17"), std::string::npos) << message;
+      EXPECT_NE(message.find("vertex 2"), std::string::npos) << message;
+      EXPECT_NE(message.find(words), std::string::npos) << message;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace cdsim
