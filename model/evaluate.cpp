@@ -44,7 +44,9 @@ DesignResult evaluate(const PreparedScene& prepared, const Design& design, const
   double sum = 0, sum_squares = 0;
   int64_t mismatches = 0, over_lsb = 0;
   const double lsb = std::ldexp(1.0, -widths.out_frac);
-  std::vector<Fragment> fragments;
+  // Kept across calls: a fresh buffer per pass costs page faults that would
+  // dominate the model's own time.
+  static thread_local std::vector<Fragment> fragments;
   for (size_t i = 0; i < prepared.unit.size(); ++i) {
     fragments.clear();
     const TriangleRecord r = unit.run(prepared.unit[i], &fragments);

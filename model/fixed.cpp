@@ -8,13 +8,6 @@ namespace {
 const Wide kWideLimit = Wide{1} << 125;
 }  // namespace
 
-Wide Format::max_raw() const {
-  const int magnitude_bits = is_signed ? total_bits() - 1 : total_bits();
-  return (Wide{1} << magnitude_bits) - 1;
-}
-
-Wide Format::min_raw() const { return is_signed ? -(Wide{1} << (total_bits() - 1)) : 0; }
-
 Wide floor_div(Wide numerator, Wide denominator) {
   Wide quotient = numerator / denominator;
   if ((numerator % denominator != 0) && ((numerator < 0) != (denominator < 0))) --quotient;
@@ -23,34 +16,18 @@ Wide floor_div(Wide numerator, Wide denominator) {
 
 Wide ceil_div(Wide numerator, Wide denominator) { return -floor_div(-numerator, denominator); }
 
-Wide shift_round(Wide x, int shift, Round round) {
-  if (shift <= 0) {
-    // A left shift past 125 bits can only feed a saturation; clamp instead of overflowing.
-    if (x != 0 && bit_length(x) - shift > 125) return x > 0 ? kWideLimit : -kWideLimit;
-    return x * (Wide{1} << -shift);
-  }
-  // Arithmetic right shift floors; adding half first rounds ties toward +inf.
-  if (round == Round::Nearest) x += Wide{1} << (shift - 1);
-  return x >> shift;
+Wide shift_left_clamped(Wide x, int shift) {
+  // A left shift past 125 bits can only feed a saturation; clamp instead of overflowing.
+  if (x != 0 && bit_length(x) + shift > 125) return x > 0 ? kWideLimit : -kWideLimit;
+  return x * (Wide{1} << shift);
 }
 
-Wide fit(Wide raw, const Format& format, Overflow overflow, bool* overflowed) {
-  const Wide hi = format.max_raw();
-  const Wide lo = format.min_raw();
-  if (raw >= lo && raw <= hi) return raw;
-  if (overflowed) *overflowed = true;
-  if (overflow == Overflow::Saturate) return raw > hi ? hi : lo;
-  // Wrap: keep the low total_bits bits, then sign-extend for signed formats.
-  const int bits = format.total_bits();
-  const Wide modulus = Wide{1} << bits;
+Wide wrap(Wide raw, const Format& format) {
+  // Keep the low total_bits bits, then sign-extend for signed formats.
+  const Wide modulus = Wide{1} << format.total_bits();
   Wide low = raw & (modulus - 1);
   if (format.is_signed && low >= (modulus >> 1)) low -= modulus;
   return low;
-}
-
-Wide narrow(Wide raw, int from_frac, const Format& format, Round round, Overflow overflow,
-            bool* overflowed) {
-  return fit(shift_round(raw, from_frac - format.frac_bits, round), format, overflow, overflowed);
 }
 
 Wide from_double(double value, const Format& format, Round round, Overflow overflow,

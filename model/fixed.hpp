@@ -28,20 +28,20 @@ struct Format {
   bool is_signed = true;
 
   int total_bits() const { return int_bits + frac_bits; }
-  Wide max_raw() const;
-  Wide min_raw() const;
+  inline Wide max_raw() const;
+  inline Wide min_raw() const;
 };
 
 // x * 2^-shift, rounded as asked; a negative shift multiplies exactly.
-Wide shift_round(Wide x, int shift, Round round);
+inline Wide shift_round(Wide x, int shift, Round round);
 
 // Fits raw into format. Returns the fitted value and sets *overflowed when
 // raw lay outside the format's range (the flag is sticky: it is never cleared).
-Wide fit(Wide raw, const Format& format, Overflow overflow, bool* overflowed);
+inline Wide fit(Wide raw, const Format& format, Overflow overflow, bool* overflowed);
 
 // Re-scales raw from from_frac fraction bits to format, then fits it.
-Wide narrow(Wide raw, int from_frac, const Format& format, Round round, Overflow overflow,
-            bool* overflowed);
+inline Wide narrow(Wide raw, int from_frac, const Format& format, Round round, Overflow overflow,
+                   bool* overflowed);
 
 // Quantises a double into format (used at the unit boundary and by tests).
 // Non-finite input saturates and sets *overflowed.
@@ -56,5 +56,48 @@ int bit_length(Wide x);
 // Floor division for any signs (C++ '/' truncates toward zero).
 Wide floor_div(Wide numerator, Wide denominator);
 Wide ceil_div(Wide numerator, Wide denominator);
+
+// The same as narrow() with Round::Nearest and Overflow::Saturate for a value
+// that fits 64 bits before and after the shift (the walker's accumulator;
+// validate() in widths.cpp guarantees it). Bounds are the format's raw range.
+inline int64_t narrow_nearest_saturate(int64_t raw, int shift, int64_t lo, int64_t hi,
+                                       bool* overflowed) {
+  const int64_t scaled = shift > 0 ? (raw + (int64_t{1} << (shift - 1))) >> shift
+                                   : static_cast<int64_t>(static_cast<uint64_t>(raw) << -shift);
+  if (scaled > hi) return *overflowed = true, hi;
+  if (scaled < lo) return *overflowed = true, lo;
+  return scaled;
+}
+
+// Out of line: the rare paths (a left shift past 125 bits, wrapping).
+Wide shift_left_clamped(Wide x, int shift);
+Wide wrap(Wide raw, const Format& format);
+
+// Inline because they sit on the walker's per-pixel path.
+inline Wide Format::max_raw() const {
+  return (Wide{1} << (is_signed ? total_bits() - 1 : total_bits())) - 1;
+}
+inline Wide Format::min_raw() const { return is_signed ? -(Wide{1} << (total_bits() - 1)) : 0; }
+
+inline Wide shift_round(Wide x, int shift, Round round) {
+  if (shift <= 0) return shift_left_clamped(x, -shift);
+  // Arithmetic right shift floors; adding half first rounds ties toward +inf.
+  if (round == Round::Nearest) x += Wide{1} << (shift - 1);
+  return x >> shift;
+}
+
+inline Wide fit(Wide raw, const Format& format, Overflow overflow, bool* overflowed) {
+  const Wide hi = format.max_raw();
+  const Wide lo = format.min_raw();
+  if (raw >= lo && raw <= hi) return raw;
+  if (overflowed) *overflowed = true;
+  if (overflow == Overflow::Saturate) return raw > hi ? hi : lo;
+  return wrap(raw, format);
+}
+
+inline Wide narrow(Wide raw, int from_frac, const Format& format, Round round, Overflow overflow,
+                   bool* overflowed) {
+  return fit(shift_round(raw, from_frac - format.frac_bits, round), format, overflow, overflowed);
+}
 
 }  // namespace cdsim::fx

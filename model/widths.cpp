@@ -55,10 +55,12 @@ void validate(const Widths& w) {
   // The walker accumulates T + o*S in 64 bits at max(t_frac, s_frac) fraction bits,
   // with o up to 2^14 columns, then the correction adds one more bit.
   const int frac = std::max(w.t_frac, w.s_frac);
-  const int acc_bits = std::max(w.t_int + frac, w.s_int + frac + 14) + 2;
+  const int acc_bits =
+      std::max(w.t_int + frac, w.s_int + frac + 14) + 2 + std::max(0, w.out_frac - frac);
   if (acc_bits > 63)
     throw std::invalid_argument(fmt::format(
-        "widths need a {}-bit walker accumulator (t_int/s_int + max(t_frac, s_frac) + 16); "
+        "widths need a {}-bit walker accumulator (t_int or s_int + 14, + max(t_frac, s_frac) + 2, "
+        "+ out_frac beyond that); "
         "the limit is 63",
         acc_bits));
   if (w.out_int + w.out_frac > 48)
