@@ -34,8 +34,9 @@ inline int accumulator_frac(const Widths& w) { return w.t_frac > w.s_frac ? w.t_
 inline LineValue line_value(const TableEntry& e, int64_t offset, const Widths& w) {
   const int frac = accumulator_frac(w);
   const int t_align = frac - w.t_frac, s_align = frac - w.s_frac;
-  return {(e.t_u << t_align) + offset * (e.s_u << s_align),
-          (e.t_v << t_align) + offset * (e.s_v << s_align)};
+  // Multiplications, not shifts: left-shifting a negative value is undefined in C++17.
+  const int64_t t_scale = int64_t{1} << t_align, s_scale = int64_t{1} << s_align;
+  return {e.t_u * t_scale + offset * (e.s_u * s_scale), e.t_v * t_scale + offset * (e.s_v * s_scale)};
 }
 
 }  // namespace cdsim

@@ -71,7 +71,7 @@ Span covered_span(const EdgeSet& e, bool x_major, int64_t fixed_pixel) {
     const int64_t free_coef = x_major ? e.b[i] : e.a[i];
     // E(j) = base + step*j for the free pixel index j.
     const int64_t base = fixed_coef * fixed + free_coef * half + e.c[i];
-    const int64_t step = free_coef << e.subpixel_bits;
+    const int64_t step = free_coef * (int64_t{1} << e.subpixel_bits);
     const int64_t need = e.threshold[i] - base;  // step*j >= need
     if (step > 0) {
       span.lo = std::max(span.lo, static_cast<int64_t>(fx::ceil_div(need, step)));

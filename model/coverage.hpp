@@ -39,7 +39,7 @@ PixelBox bounding_box(const UnitTriangle& triangle, int subpixel_bits, int viewp
 
 // Pixel-centre coordinate of pixel index i, in subpixel units.
 inline int64_t pixel_centre(int64_t i, int subpixel_bits) {
-  return (i << subpixel_bits) + (int64_t{1} << (subpixel_bits - 1));
+  return i * (int64_t{1} << subpixel_bits) + (int64_t{1} << (subpixel_bits - 1));
 }
 
 bool covers(const EdgeSet& edges, int64_t pixel_x, int64_t pixel_y);

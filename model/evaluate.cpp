@@ -36,7 +36,7 @@ DesignResult evaluate(const PreparedScene& prepared, const Design& design, const
   result.design = design;
   result.triangles = static_cast<int64_t>(prepared.unit.size());
   if (design.kind == Design::Kind::ConstantDepth) {
-    result.table_depth = widths.table_depth;
+    result.table_depth = widths.table_depth * design.density;
     result.table_word_bits = widths.table_word_bits();
     result.table_bits = int64_t{result.table_depth} * result.table_word_bits;
   }

@@ -30,6 +30,13 @@ Wide wrap(Wide raw, const Format& format) {
   return low;
 }
 
+Wide wrap_huge_left_shift(Wide raw, int shift, const Format& format, bool* overflowed) {
+  // |raw * 2^shift| > 2^125 lies far outside any format, so it always overflows.
+  if (overflowed) *overflowed = true;
+  const Wide low = raw & ((Wide{1} << 64) - 1);
+  return wrap(shift >= format.total_bits() ? 0 : low * (Wide{1} << shift), format);
+}
+
 Wide from_double(double value, const Format& format, Round round, Overflow overflow,
                  bool* overflowed) {
   if (!std::isfinite(value)) {

@@ -72,6 +72,10 @@ inline int64_t narrow_nearest_saturate(int64_t raw, int shift, int64_t lo, int64
 // Out of line: the rare paths (a left shift past 125 bits, wrapping).
 Wide shift_left_clamped(Wide x, int shift);
 Wide wrap(Wide raw, const Format& format);
+// Wrapping raw * 2^shift when the product would not fit 128 bits: only its low
+// bits matter, so shift the low 64 bits of raw (formats are at most 62 bits).
+Wide wrap_huge_left_shift(Wide raw, int shift, const Format& format, bool* overflowed);
+int bit_length(Wide x);
 
 // Inline because they sit on the walker's per-pixel path.
 inline Wide Format::max_raw() const {
@@ -97,7 +101,10 @@ inline Wide fit(Wide raw, const Format& format, Overflow overflow, bool* overflo
 
 inline Wide narrow(Wide raw, int from_frac, const Format& format, Round round, Overflow overflow,
                    bool* overflowed) {
-  return fit(shift_round(raw, from_frac - format.frac_bits, round), format, overflow, overflowed);
+  const int shift = from_frac - format.frac_bits;
+  if (shift < 0 && overflow == Overflow::Wrap && raw != 0 && bit_length(raw) - shift > 125)
+    return wrap_huge_left_shift(raw, -shift, format, overflowed);
+  return fit(shift_round(raw, shift, round), format, overflow, overflowed);
 }
 
 }  // namespace cdsim::fx

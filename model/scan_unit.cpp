@@ -15,7 +15,7 @@ ScanUnit::ScanUnit(const Design& design, const Widths& widths, int viewport_widt
       widths_(widths),
       viewport_width_(viewport_width),
       viewport_height_(viewport_height),
-      table_(widths.table_depth) {}
+      table_(widths.table_depth * design.density) {}
 
 TriangleRecord ScanUnit::run(const UnitTriangle& triangle, std::vector<Fragment>* fragments) {
   const Setup setup = setup_engine(triangle, design_, widths_, viewport_width_, viewport_height_);

@@ -68,8 +68,8 @@ Setup setup_engine(const UnitTriangle& t, const Design& design, const Widths& w,
   const Wide sign = det < 0 ? -1 : 1;
   const int sp = w.subpixel_bits;
   const int64_t half = int64_t{1} << (sp - 1);
-  const Wide ref_x = (Wide{s.box.x_lo} << sp) + half - v[0].x;
-  const Wide ref_y = (Wide{s.box.y_lo} << sp) + half - v[0].y;
+  const Wide ref_x = Wide{s.box.x_lo} * (Wide{1} << sp) + half - v[0].x;
+  const Wide ref_y = Wide{s.box.y_lo} * (Wide{1} << sp) + half - v[0].y;
   struct Exact {
     Wide at_ref, per_x, per_y;
   };
@@ -77,7 +77,7 @@ Setup setup_engine(const UnitTriangle& t, const Design& design, const Widths& w,
     const Wide da1 = a[1] - a[0], da2 = a[2] - a[0];
     const Wide coef_x = sign * (da1 * dy2 - da2 * dy1);
     const Wide coef_y = sign * (da2 * dx1 - da1 * dx2);
-    return Exact{sign * a[0] * det + coef_x * ref_x + coef_y * ref_y, coef_x << sp, coef_y << sp};
+    return Exact{sign * a[0] * det + coef_x * ref_x + coef_y * ref_y, coef_x * (Wide{1} << sp), coef_y * (Wide{1} << sp)};
   };
   const Exact eq = plane(q), eu = plane(uq), ev = plane(vq);
 
@@ -128,7 +128,7 @@ Setup setup_engine(const UnitTriangle& t, const Design& design, const Widths& w,
   for (size_t i = 0; i < 3; ++i) {
     const Wide vertex_major = (s.x_major ? v[i].x - v[0].x : v[i].y - v[0].y) - ref_major;
     const Wide vertex_minor = (s.x_major ? v[i].y - v[0].y : v[i].x - v[0].x) - ref_minor;
-    const Wide kappa = s.density * ((vertex_minor << gf) - Wide{s.g} * vertex_major);
+    const Wide kappa = s.density * (vertex_minor * (Wide{1} << gf) - Wide{s.g} * vertex_major);
     kappa_lo = i == 0 ? kappa : std::min(kappa_lo, kappa);
     kappa_hi = i == 0 ? kappa : std::max(kappa_hi, kappa);
   }

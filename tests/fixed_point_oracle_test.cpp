@@ -389,11 +389,12 @@ TEST(FixedPointOracle, NarrowFromWideProductsMatchesScFix) {
       ++combos;
       for (int n = 0; n < 200 && !checker.exhausted(); ++n) {
         const int src_wl = rng.range(63, 120);
-        // Binary point anywhere from "at the target's frac" upward, as a product's is
-        // (product_frac = recip_bits + exponent + uv_in_frac >= target frac in practice).
+        // Binary point at or above the target's, so narrow() shifts right. Wide sources
+        // shifted left are covered by NarrowWideSourceLeftShiftSaturates (Saturate) and by
+        // NarrowWrapWideSourceLeftShift (Wrap).
         const int from_frac = rng.coin() ? src_wl - (f.int_bits + rng.range(-8, 8))
                                          : rng.range(f.frac_bits, 110);
-        if (from_frac < f.frac_bits) continue;  // see NarrowWrapWideSourceLeftShift below
+        if (from_frac < f.frac_bits) continue;
         const Wide raw = random_source(rng, src_wl, from_frac, f);
         check_narrow_case(checker, raw, src_wl, from_frac, f, m);
       }
@@ -424,13 +425,65 @@ TEST(FixedPointOracle, NarrowWideSourceLeftShiftSaturates) {
   g_narrow_samples += checker.samples();
 }
 
-// Known disagreement, kept as a reproduction (enable with --gtest_also_run_disabled_tests):
-// for a source wider than ~64 bits that narrow() shifts left (from_frac < frac_bits),
-// shift_round() clamps the product at 2^125 once bit_length(raw) + shift > 125; with
-// Overflow::Wrap the clamped value wraps to 0, whereas SC_WRAP keeps the low bits of the
-// exact value. The model only narrows wide values with Overflow::Saturate, where the clamp
-// is harmless (NarrowWideSourceLeftShiftSaturates).
-TEST(FixedPointOracle, DISABLED_NarrowWrapWideSourceLeftShift) {
+// narrow_nearest_saturate(): the walker's inline 64-bit narrowing. Its contract is
+// narrow() with Round::Nearest / Overflow::Saturate for a value that fits 64 bits before
+// and after the shift; it is checked against SC_RND / SC_SAT (and against narrow()).
+TEST(FixedPointOracle, NarrowNearestSaturateMatchesScFix) {
+  const Mode& m = kModes[2];  // Nearest/Saturate (SC_RND,SC_SAT)
+  long long samples = 0;
+  long long combos = 0;
+  for (const Format& f : all_formats()) {
+    const std::uint64_t seed = combo_seed(f, m, 5);
+    SCOPED_TRACE(::testing::Message() << "kSeed=0x" << std::hex << kSeed << " combo seed=0x"
+                                      << seed << std::dec << " target " << describe(f)
+                                      << " mode " << m.name);
+    Rng rng(seed);
+    Checker checker;
+    ++combos;
+    const auto lo = static_cast<std::int64_t>(expected_min_raw(f));
+    const auto hi = static_cast<std::int64_t>(expected_max_raw(f));
+    for (int n = 0; n < 1000 && !checker.exhausted(); ++n) {
+      // |raw| < 2^61 and, for a left shift, |raw| * 2^-shift < 2^62: 64 bits hold both
+      // the rounding addend and the result, as the contract requires.
+      int src_wl = rng.range(1, 62);
+      int from_frac = rng.range(0, 3) != 0 ? src_wl - (f.int_bits + rng.range(-8, 8))
+                                           : rng.range(0, 90);
+      const int shift = from_frac - f.frac_bits;
+      if (shift > 62) from_frac = f.frac_bits + 62;
+      if (shift < 0 && src_wl - shift > 62) src_wl = std::max(1, 62 + shift);
+      if (src_wl - (from_frac - f.frac_bits) > 62 && from_frac < f.frac_bits) continue;
+      const Wide raw = random_source(rng, src_wl, from_frac, f);
+
+      sc_fix src(src_wl, src_wl - from_frac, sc_dt::SC_TRN, sc_dt::SC_WRAP);
+      write_raw(src, src_wl, raw);
+      const OracleResult o = oracle_cast(src, f, m, src_wl - from_frac);
+
+      bool flag = false;
+      const std::int64_t got = cdsim::fx::narrow_nearest_saturate(
+          static_cast<std::int64_t>(raw), from_frac - f.frac_bits, lo, hi, &flag);
+      bool narrow_flag = false;
+      const Wide via_narrow =
+          cdsim::fx::narrow(raw, from_frac, f, m.round, m.overflow, &narrow_flag);
+      const auto what = [&] {
+        std::ostringstream os;
+        os << "narrow_nearest_saturate(raw=" << str(raw) << ", shift=" << from_frac - f.frac_bits
+           << ", lo=" << lo << ", hi=" << hi << ") into " << describe(f) << "; narrow() gives "
+           << str(via_narrow) << " flag " << narrow_flag;
+        return os.str();
+      };
+      checker.check(Wide{got}, flag, o, f, what);
+      if (via_narrow != Wide{got} || narrow_flag != flag)
+        checker.check(via_narrow, narrow_flag, o, f, what);
+    }
+    samples += checker.samples();
+  }
+  g_narrow_samples += samples;
+  std::printf("[ narrow64 ] %lld combinations, %lld samples\n", combos, samples);
+}
+
+// For a source wider than ~64 bits that narrow() shifts left (from_frac < frac_bits), the
+// product does not fit 128 bits; with Overflow::Wrap the low bits must still match SC_WRAP.
+TEST(FixedPointOracle, NarrowWrapWideSourceLeftShift) {
   Checker checker;
   const Format f{32, 30, true};  // sc_fix<62,32>
   for (const Mode& m : kModes) {
