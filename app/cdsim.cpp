@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "evaluate.hpp"
+#include "regress.hpp"
 #include "report.hpp"
 #include "scene.hpp"
 #include "widths.hpp"
@@ -116,6 +117,8 @@ int main(int argc, char** argv) {
   CLI::App* widths = app.add_subcommand("widths", "list the width and microarchitecture parameters");
   widths->add_option("--set", widths_options.settings, "NAME=VALUE, as for run");
 
+  CLI::App* regress = cdsim::rtl::add_regress_command(app);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -124,6 +127,7 @@ int main(int argc, char** argv) {
   try {
     if (*bench) return bench_command(bench_options, bench_seconds);
     if (*widths) return widths_command(widths_options);
+    if (*regress) return cdsim::rtl::run_regress_command();
     return run_command(run_options, json_path, show_worst);
   } catch (const std::exception& e) {
     fmt::print(stderr, "cdsim: error: {}\n", e.what());

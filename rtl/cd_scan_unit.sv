@@ -78,7 +78,11 @@ module cd_scan_unit #(
   localparam int TBits    = TInt + TFrac;
   localparam int SBits    = SInt + SFrac;
   localparam int WordBits = 2 * TBits + 2 * SBits + 2;
-  localparam int AddrBits = $clog2(TableDepth);
+  // A dense-m design uses m times TableDepth lines (docs/microarchitecture.md):
+  // the SRAM is sized for the densest design, m = 4.
+  localparam int MaxDensity = 4;
+  localparam int SramDepth = TableDepth * MaxDensity;
+  localparam int AddrBits = $clog2(SramDepth);
   localparam int OutBits  = OutInt + OutFrac;
   localparam logic [7:0] FlagBanded = 8'h08;
 
@@ -129,7 +133,7 @@ module cd_scan_unit #(
   setup_engine #(
     .SubpixelBits(SubpixelBits), .UvInFrac(UvInFrac), .QBits(QBits), .PlaneBits(PlaneBits),
     .GFrac(GFrac), .RecipBits(RecipBits), .TInt(TInt), .TFrac(TFrac), .SInt(SInt),
-    .SFrac(SFrac), .TableDepth(TableDepth), .RecipLatency(RecipLatency)
+    .SFrac(SFrac), .TableDepth(SramDepth), .RecipLatency(RecipLatency)
   ) u_setup_engine (
     .clk_i,
     .rst_ni,
@@ -204,7 +208,7 @@ module cd_scan_unit #(
   logic [WordBits-1:0] own_entry, neighbour_entry;
 
   scanline_table #(
-    .Depth(TableDepth), .WordBits(WordBits)
+    .Depth(SramDepth), .WordBits(WordBits)
   ) u_scanline_table (
     .clk_i,
     .write_i           (write_valid),
@@ -237,7 +241,7 @@ module cd_scan_unit #(
   );
 
   // ---------------------------------------------------------------- control
-  logic signed [63:0] guard, pixel_lines, lines_per_band, next_band_lo, next_band_hi;
+  logic signed [63:0] guard, depth, pixel_lines, lines_per_band, next_band_lo, next_band_hi;
   logic signed [63:0] read_minor, read_line, read_addr;
   logic               read_minor_valid;
   logic               band_done, last_column;
@@ -272,8 +276,8 @@ module cd_scan_unit #(
 
     guard = {63'd0, correction_q};
     pixel_lines = pixel_line_hi - pixel_line_lo + 64'sd1;
-    lines_per_band = pixel_lines + 2 * guard <= 64'(TableDepth) ? pixel_lines
-                                                                : 64'(TableDepth) - 2 * guard;
+    depth = 64'(TableDepth) <<< density_log2_q;
+    lines_per_band = pixel_lines + 2 * guard <= depth ? pixel_lines : depth - 2 * guard;
     next_band_lo = band_hi_q + 64'sd1;
     last_column = offset_q == major_count - 32'd1;
 

@@ -1,0 +1,77 @@
+// The one narrow seam between the RTL and the C++ model (STYLE.md): the model
+// runs each triangle first; every fragment (x, y, u, v, flags) and every
+// per-triangle record (cycles, lines, bands, pixels, flags) the RTL emits is
+// compared field by field, and the first mismatch is described with its
+// triangle, pixel, field, expected and actual value, and seed.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "design.hpp"
+#include "scan_unit.hpp"
+#include "triangle.hpp"
+#include "widths.hpp"
+
+namespace cdsim::rtl {
+
+// One triangle at the RTL's input: the unit triangle, the design and viewport.
+struct Job {
+  UnitTriangle triangle;
+  const Design* design = nullptr;
+  int viewport_width = 0, viewport_height = 0;
+  std::string origin;  // "scene triangle 12", "random 40 (sliver)"
+};
+
+struct RtlFragment {
+  int64_t x = 0, y = 0, u = 0, v = 0;
+  uint32_t flags = 0;
+};
+
+struct RtlRecord {
+  int64_t cycles = 0, lines = 0, bands = 0, pixels = 0;
+  uint32_t flags = 0;
+};
+
+class Scoreboard {
+ public:
+  Scoreboard(const Widths& widths, uint64_t seed) : widths_(widths), seed_(seed) {}
+
+  // Runs the model on the job: its fragments and record become the expectation.
+  void begin(size_t index, const Job& job);
+  // Each returns false at a mismatch; mismatch() then describes it.
+  bool fragment(const RtlFragment& actual);
+  // stall_cycles: PIXEL cycles whose fragment the sink refused; the RTL counts
+  // them, the model does not.
+  bool record(const RtlRecord& actual, int64_t stall_cycles);
+
+  const std::string& mismatch() const { return mismatch_; }
+  size_t triangle_index() const { return index_; }
+  int64_t fragments_compared() const { return fragments_compared_; }
+  int64_t model_cycles() const { return model_cycles_; }
+  int64_t rtl_cycles() const { return rtl_cycles_; }
+  int64_t mismatches() const { return mismatches_; }
+
+ private:
+  bool fail(const std::string& where, const char* field, int64_t expected, int64_t actual);
+  ScanUnit& unit_for(const Job& job);
+
+  Widths widths_;
+  uint64_t seed_;
+  std::map<std::tuple<std::string, int, int>, std::unique_ptr<ScanUnit>> units_;
+  const Job* job_ = nullptr;
+  size_t index_ = 0;
+  std::vector<Fragment> expected_;
+  TriangleRecord expected_record_;
+  size_t next_ = 0;
+  int64_t fragments_compared_ = 0, model_cycles_ = 0, rtl_cycles_ = 0, mismatches_ = 0;
+  std::string mismatch_;
+};
+
+std::string describe_job(const Job& job);
+
+}  // namespace cdsim::rtl
