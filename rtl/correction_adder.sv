@@ -37,38 +37,67 @@ module correction_adder #(
   localparam logic [7:0] FlagOutputSaturated  = 8'h02;
   localparam logic [7:0] FlagNeighbourDropped = 8'h10;
 
-  // u_line and v_line of one entry at column offset o, Frac fraction bits.
-  function automatic logic signed [127:0] line_u(input logic [WordBits-1:0] entry,
-                                                 input logic [31:0] offset);
-    logic signed [127:0] t;
-    logic signed [127:0] s;
+  // u_line and v_line of one entry at column offset o, Frac fraction bits. The
+  // model's walker accumulator is 64 bits (widths.cpp validate() keeps it within
+  // 63), and so is this one.
+  function automatic logic signed [63:0] line_u(input logic [WordBits-1:0] entry,
+                                                input logic [31:0] offset);
+    logic signed [63:0] t;
+    logic signed [63:0] s;
     begin
-      t = $signed({{(128 - TBits){entry[TBits-1]}}, entry[TBits-1:0]});
-      s = $signed({{(128 - SBits){entry[2*TBits+SBits-1]}}, entry[2*TBits +: SBits]});
-      line_u = (t <<< (Frac - TFrac)) + $signed({96'd0, offset}) * (s <<< (Frac - SFrac));
+      t = $signed({{(64 - TBits){entry[TBits-1]}}, entry[TBits-1:0]});
+      s = $signed({{(64 - SBits){entry[2*TBits+SBits-1]}}, entry[2*TBits +: SBits]});
+      line_u = (t <<< (Frac - TFrac)) + $signed({32'd0, offset}) * (s <<< (Frac - SFrac));
     end
   endfunction
 
-  function automatic logic signed [127:0] line_v(input logic [WordBits-1:0] entry,
-                                                 input logic [31:0] offset);
-    logic signed [127:0] t;
-    logic signed [127:0] s;
+  function automatic logic signed [63:0] line_v(input logic [WordBits-1:0] entry,
+                                                input logic [31:0] offset);
+    logic signed [63:0] t;
+    logic signed [63:0] s;
     begin
-      t = $signed({{(128 - TBits){entry[2*TBits-1]}}, entry[TBits +: TBits]});
-      s = $signed({{(128 - SBits){entry[2*TBits+2*SBits-1]}}, entry[2*TBits+SBits +: SBits]});
-      line_v = (t <<< (Frac - TFrac)) + $signed({96'd0, offset}) * (s <<< (Frac - SFrac));
+      t = $signed({{(64 - TBits){entry[2*TBits-1]}}, entry[TBits +: TBits]});
+      s = $signed({{(64 - SBits){entry[2*TBits+2*SBits-1]}}, entry[2*TBits+SBits +: SBits]});
+      line_v = (t <<< (Frac - TFrac)) + $signed({32'd0, offset}) * (s <<< (Frac - SFrac));
     end
   endfunction
 
-  logic                neighbour_usable;
-  logic [1:0]          neighbour_flags;
-  logic signed [127:0] own_u, own_v, other_u, other_v, weight, sum, narrowed, fitted;
+  // own + round(weight (other - own) 2^-d_frac): the product is exact (128 bits),
+  // the sum is 64 bits like the model's.
+  function automatic logic signed [63:0] corrected(input logic signed [63:0] own,
+                                                   input logic signed [63:0] other,
+                                                   input logic [31:0] weight);
+    logic signed [127:0] product;
+    begin
+      product = $signed({96'd0, weight}) * ($signed({{64{other[63]}}, other}) -
+                                            $signed({{64{own[63]}}, own}));
+      corrected = own + 64'(cd_shift_round(product, 32'(DFrac), 1'b1));
+    end
+  endfunction
+
+  // To the output format: round to nearest (ties up), saturate, flag; in 64
+  // bits as the model does (fx::narrow_nearest_saturate).
+  function automatic logic signed [63:0] narrow_out(input logic signed [63:0] x);
+    logic signed [63:0] y;
+    begin
+      if (Frac - OutFrac > 0) y = (x + (64'sd1 <<< (Frac - OutFrac - 1))) >>> (Frac - OutFrac);
+      else y = x <<< (OutFrac - Frac);
+      narrow_out = y;
+    end
+  endfunction
+
+  localparam logic signed [63:0] OutMax = (64'sd1 <<< (OutBits - 1)) - 64'sd1;
+  localparam logic signed [63:0] OutMin = -(64'sd1 <<< (OutBits - 1));
+
+  logic               neighbour_usable;
+  logic [1:0]         neighbour_flags;
+  logic signed [63:0] own_u, own_v, sum_u, sum_v, narrowed_u, narrowed_v;
 
   always_comb begin
     u_o = '0;
     v_o = '0;
     flags_o = '0;
-    {own_u, own_v, other_u, other_v, weight, sum, narrowed, fitted} = '0;
+    {own_u, own_v, sum_u, sum_v, narrowed_u, narrowed_v} = '0;
     neighbour_usable = 1'b0;
     neighbour_flags = neighbour_entry_i[WordBits-1 -: 2];
     if (valid_i) begin
@@ -79,21 +108,18 @@ module correction_adder #(
       if (correct_i && !neighbour_usable) flags_o = flags_o | FlagNeighbourDropped;
       own_u = line_u(own_entry_i, offset_i);
       own_v = line_v(own_entry_i, offset_i);
-      other_u = neighbour_usable ? line_u(neighbour_entry_i, offset_i) : own_u;
-      other_v = neighbour_usable ? line_v(neighbour_entry_i, offset_i) : own_v;
-      weight = $signed({96'd0, weight_i});
-
-      sum = own_u + cd_shift_round(weight * (other_u - own_u), 32'(DFrac), 1'b1);
-      narrowed = cd_shift_round(sum, 32'(Frac - OutFrac), 1'b1);
-      fitted = cd_saturate(narrowed, OutBits);
-      if (fitted != narrowed) flags_o = flags_o | FlagOutputSaturated;
-      u_o = fitted[OutBits-1:0];
-
-      sum = own_v + cd_shift_round(weight * (other_v - own_v), 32'(DFrac), 1'b1);
-      narrowed = cd_shift_round(sum, 32'(Frac - OutFrac), 1'b1);
-      fitted = cd_saturate(narrowed, OutBits);
-      if (fitted != narrowed) flags_o = flags_o | FlagOutputSaturated;
-      v_o = fitted[OutBits-1:0];
+      sum_u = own_u;
+      sum_v = own_v;
+      if (neighbour_usable) begin
+        sum_u = corrected(own_u, line_u(neighbour_entry_i, offset_i), weight_i);
+        sum_v = corrected(own_v, line_v(neighbour_entry_i, offset_i), weight_i);
+      end
+      narrowed_u = narrow_out(sum_u);
+      narrowed_v = narrow_out(sum_v);
+      if (narrowed_u > OutMax || narrowed_u < OutMin) flags_o = flags_o | FlagOutputSaturated;
+      if (narrowed_v > OutMax || narrowed_v < OutMin) flags_o = flags_o | FlagOutputSaturated;
+      u_o = OutBits'(narrowed_u > OutMax ? OutMax : (narrowed_u < OutMin ? OutMin : narrowed_u));
+      v_o = OutBits'(narrowed_v > OutMax ? OutMax : (narrowed_v < OutMin ? OutMin : narrowed_v));
     end
   end
 

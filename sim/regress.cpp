@@ -295,6 +295,7 @@ int run_bench(const std::vector<Job>& jobs, const Widths& widths) {
     trace->close();
     if (!options.trace.empty()) std::cout << fmt::format("waveform: {}\n", options.trace);
   }
+  std::cout << scoreboard.flag_census() << '\n';
   std::cout << fmt::format(
       "{} triangles, {} fragments compared, {} mismatches, RTL cycles {}, model cycles {}, "
       "{:.0f} cycles/s\n",

@@ -57,6 +57,9 @@ bool Scoreboard::fragment(const RtlFragment& a) {
 
 bool Scoreboard::record(const RtlRecord& a, int64_t stall_cycles) {
   const TriangleRecord& e = expected_record_;
+  for (int bit = 0; bit < flag::kCount; ++bit)
+    if (e.flags & (1u << bit)) ++flagged_[static_cast<size_t>(bit)];
+  if (!e.x_major) ++y_major_;
   model_cycles_ += e.cycles;
   rtl_cycles_ += a.cycles;
   const std::string where = "record";
@@ -71,6 +74,13 @@ bool Scoreboard::record(const RtlRecord& a, int64_t stall_cycles) {
   if (a.pixels != e.pixels) return fail(where, "pixels", e.pixels, a.pixels);
   if (a.flags != e.flags) return fail(where, "flags", e.flags, a.flags);
   return true;
+}
+
+std::string Scoreboard::flag_census() const {
+  std::string text = "flags (triangles):";
+  for (int bit = 0; bit < flag::kCount; ++bit)
+    text += fmt::format(" {}:{}", flag::name(bit), flagged_[static_cast<size_t>(bit)]);
+  return text + fmt::format("; y-major triangles: {}", y_major_);
 }
 
 }  // namespace cdsim::rtl

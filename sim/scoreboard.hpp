@@ -5,6 +5,7 @@
 // triangle, pixel, field, expected and actual value, and seed.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -55,6 +56,9 @@ class Scoreboard {
   int64_t model_cycles() const { return model_cycles_; }
   int64_t rtl_cycles() const { return rtl_cycles_; }
   int64_t mismatches() const { return mismatches_; }
+  // Triangles whose record raised each flag, and banded / y-major triangles:
+  // evidence that a width configuration really exercises its corners.
+  std::string flag_census() const;
 
  private:
   bool fail(const std::string& where, const char* field, int64_t expected, int64_t actual);
@@ -70,6 +74,8 @@ class Scoreboard {
   size_t next_ = 0;
   int64_t fragments_compared_ = 0, model_cycles_ = 0, rtl_cycles_ = 0, mismatches_ = 0;
   std::string mismatch_;
+  std::array<int64_t, flag::kCount> flagged_{};
+  int64_t y_major_ = 0;
 };
 
 std::string describe_job(const Job& job);
