@@ -9,12 +9,19 @@ namespace cdsim {
 const std::vector<Design>& all_designs() {
   using K = Design::Kind;
   static const std::vector<Design> designs = {
-      {"cd-none", K::ConstantDepth, 1, false, "constant-depth lines, no correction"},
-      {"cd-linear", K::ConstantDepth, 1, true, "constant-depth lines, linear correction"},
-      {"cd-dense2", K::ConstantDepth, 2, false, "2 lines per pixel, no correction"},
-      {"cd-dense4", K::ConstantDepth, 4, false, "4 lines per pixel, no correction"},
-      {"cd-dense2-linear", K::ConstantDepth, 2, true, "2 lines per pixel, linear correction"},
-      {"divide", K::Divide, 1, false, "exact per-pixel reciprocal, one pixel per clock"},
+      {"cd-none", K::ConstantDepth, 1, false, false, 0, "constant-depth lines, no correction"},
+      {"cd-linear", K::ConstantDepth, 1, true, false, 0, "constant-depth lines, linear correction"},
+      {"cd-dense2", K::ConstantDepth, 2, false, false, 0, "2 lines per pixel, no correction"},
+      {"cd-dense4", K::ConstantDepth, 4, false, false, 0, "4 lines per pixel, no correction"},
+      {"cd-dense2-linear", K::ConstantDepth, 2, true, false, 0, "2 lines per pixel, linear correction"},
+      {"divide", K::Divide, 1, false, false, 0, "exact per-pixel reciprocal, one pixel per clock"},
+      {"kim-iter", K::Kim, 1, false, false, 0,
+       "Kim-style: midpoint integer part, iterative restoring-division fraction (reconstruction)"},
+      {"kim-pipe", K::Kim, 1, false, true, 0,
+       "Kim-style: midpoint integer part, pipelined restoring-division fraction (reconstruction)"},
+      {"affine-sub16", K::Affine, 1, false, false, 16, "exact divide every 16 pixels, affine between"},
+      {"affine-sub8", K::Affine, 1, false, false, 8, "exact divide every 8 pixels, affine between"},
+      {"affine", K::Affine, 1, false, false, 0, "plain affine interpolation of u, v (not perspective-correct)"},
   };
   return designs;
 }

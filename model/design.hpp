@@ -8,11 +8,13 @@
 namespace cdsim {
 
 struct Design {
-  enum class Kind { ConstantDepth, Divide };
+  enum class Kind { ConstantDepth, Divide, Kim, Affine };
   std::string name;
   Kind kind = Kind::ConstantDepth;
   int density = 1;          // constant-depth lines per pixel (method 1: 2, 4)
   bool correction = false;  // linear correction between neighbouring lines (method 2)
+  bool pipelined = false;   // Kim: fraction by a pipelined divider (else iterative)
+  int subdivision = 0;      // Affine: exact divide every this many pixels (0: plain affine)
   std::string summary;
 };
 

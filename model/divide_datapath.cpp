@@ -2,8 +2,8 @@
 
 namespace cdsim {
 
-CorrectedValue divide_pixel(const Setup& s, int64_t major_offset, int64_t minor_offset,
-                            const Widths& w, uint32_t* flags) {
+CorrectedValue divide_uv(const Setup& s, int64_t major_offset, int64_t minor_offset,
+                         const Widths& w, const fx::Format& format, uint32_t* flags) {
   const auto at = [&](const Plane& p) {
     return p.at_ref + fx::Wide{major_offset} * p.per_major + fx::Wide{minor_offset} * p.per_minor;
   };
@@ -11,7 +11,6 @@ CorrectedValue divide_pixel(const Setup& s, int64_t major_offset, int64_t minor_
   if (r.out_of_range) *flags |= flag::kDepthRange;
   const int product_frac = w.recip_bits + r.exponent + w.uv_in_frac;
   CorrectedValue out;
-  const fx::Format format = w.out_format();
   out.u = static_cast<int64_t>(fx::narrow(at(s.u) * r.mantissa, product_frac, format,
                                           fx::Round::Nearest, fx::Overflow::Saturate, &out.saturated));
   out.v = static_cast<int64_t>(fx::narrow(at(s.v) * r.mantissa, product_frac, format,

@@ -85,6 +85,9 @@ inline Wide Format::min_raw() const { return is_signed ? -(Wide{1} << (total_bit
 
 inline Wide shift_round(Wide x, int shift, Round round) {
   if (shift <= 0) return shift_left_clamped(x, -shift);
+  // |x| < 2^127, so from a shift of 127 on only the sign survives (and, to
+  // nearest, nothing); shifting a 128-bit value that far is undefined in C++.
+  if (shift >= 127) return round == Round::Nearest || x >= 0 ? 0 : -1;
   // Arithmetic right shift floors; adding half first rounds ties toward +inf.
   if (round == Round::Nearest) x += Wide{1} << (shift - 1);
   return x >> shift;

@@ -4,7 +4,9 @@
 
 #include "column_walker.hpp"
 #include "correction_adder.hpp"
+#include "affine_datapath.hpp"
 #include "divide_datapath.hpp"
+#include "kim_datapath.hpp"
 #include "setup_engine.hpp"
 
 namespace cdsim {
@@ -19,10 +21,15 @@ ScanUnit::ScanUnit(const Design& design, const Widths& widths, int viewport_widt
 
 TriangleRecord ScanUnit::run(const UnitTriangle& triangle, std::vector<Fragment>* fragments) {
   const Setup setup = setup_engine(triangle, design_, widths_, viewport_width_, viewport_height_);
-  TriangleRecord record = setup.empty ? TriangleRecord{}
-                          : design_.kind == Design::Kind::Divide
-                              ? run_divide(setup, fragments)
-                              : run_constant_depth(setup, fragments);
+  TriangleRecord record;
+  if (!setup.empty) {
+    switch (design_.kind) {
+      case Design::Kind::ConstantDepth: record = run_constant_depth(setup, fragments); break;
+      case Design::Kind::Divide: record = run_divide(setup, fragments); break;
+      case Design::Kind::Kim: record = run_kim(setup, fragments); break;
+      case Design::Kind::Affine: record = run_affine(triangle, setup, fragments); break;
+    }
+  }
   record.setup_cycles = widths_.setup_cycles;
   record.cycles = record.setup_cycles + record.fill_cycles + record.walk_cycles;
   record.x_major = setup.x_major;
@@ -116,6 +123,88 @@ TriangleRecord ScanUnit::run_divide(const Setup& s, std::vector<Fragment>* fragm
   }
   // One cycle per column and per pixel, plus draining the reciprocal pipeline.
   record.walk_cycles = s.major_count + record.pixels + widths_.recip_latency;
+  return record;
+}
+
+TriangleRecord ScanUnit::run_kim(const Setup& s, std::vector<Fragment>* fragments) {
+  TriangleRecord record;
+  // Each column: one cycle, and for a non-empty span one full division
+  // (out_int quotient bits, one per cycle) to initialise I and R.
+  record.walk_cycles = s.major_count;
+  for (int64_t offset = 0; offset < s.major_count; ++offset) {
+    const ColumnState c = walk_column(s, offset, widths_);
+    if (c.span.empty()) continue;
+    record.walk_cycles += widths_.out_int;
+    int64_t previous_u = 0, previous_v = 0;
+    for (int64_t minor = c.span.lo; minor <= c.span.hi; ++minor) {
+      const KimPixel p = kim_pixel(s, offset, minor - s.minor_lo, widths_, &record.flags);
+      const int64_t steps = minor == c.span.lo
+                                ? 0
+                                : std::max(std::abs(p.integer_u - previous_u),
+                                           std::abs(p.integer_v - previous_v));
+      previous_u = p.integer_u;
+      previous_v = p.integer_v;
+      const int64_t integer_cycles = kim_integer_cycles(steps, widths_);
+      // The integer and fraction stages are pipelined with each other; an
+      // iterative fraction unit holds each pixel for kim_frac cycles.
+      record.walk_cycles += design_.pipelined ? integer_cycles
+                                              : std::max<int64_t>(integer_cycles, widths_.kim_frac);
+      fragments->push_back(make_fragment(s, c, minor, p.value));
+      record.flags |= fragments->back().flags;
+      ++record.pixels;
+    }
+  }
+  if (design_.pipelined) record.walk_cycles += widths_.kim_frac;  // drain the fraction pipeline
+  return record;
+}
+
+TriangleRecord ScanUnit::run_affine(const UnitTriangle& triangle, const Setup& s,
+                                    std::vector<Fragment>* fragments) {
+  TriangleRecord record;
+  record.walk_cycles = s.major_count;
+  const int64_t segment = design_.subdivision;
+  const AffinePlanes planes = affine_setup(triangle, s, widths_);
+  const fx::Format exact_format = affine_format(widths_);
+  for (int64_t offset = 0; offset < s.major_count; ++offset) {
+    const ColumnState c = walk_column(s, offset, widths_);
+    if (c.span.empty()) continue;
+    const int64_t length = c.span.hi - c.span.lo + 1;
+    record.walk_cycles += length;
+    if (segment == 0) {
+      for (int64_t minor = c.span.lo; minor <= c.span.hi; ++minor) {
+        fragments->push_back(make_fragment(s, c, minor, affine_pixel(planes, offset, minor - s.minor_lo, widths_)));
+        record.flags |= fragments->back().flags;
+      }
+      record.pixels += length;
+      continue;
+    }
+    // Subdivided: the span waits for its first two end points from the
+    // pipelined divider; later end points are issued a segment ahead, so a
+    // segment shorter than the divider's latency stalls for the difference.
+    record.walk_cycles += widths_.recip_latency;
+    const auto exact_at = [&](int64_t minor) {
+      return divide_uv(s, offset, minor - s.minor_lo, widths_, exact_format, &record.flags);
+    };
+    CorrectedValue start = exact_at(c.span.lo);
+    for (int64_t first = c.span.lo; first <= c.span.hi; first += segment) {
+      const int64_t last = std::min(first + segment, c.span.hi);
+      const int64_t run = last - first;  // pixels from first to last end point
+      if (first != c.span.lo) record.walk_cycles += std::max<int64_t>(0, widths_.recip_latency - run);
+      const CorrectedValue end = run > 0 ? exact_at(last) : start;
+      // Pixels first .. last-1 (and the span's final pixel itself).
+      const int64_t stop = last == c.span.hi ? last : last - 1;
+      for (int64_t minor = first; minor <= stop; ++minor) {
+        const CorrectedValue value =
+            run > 0 ? interpolate_segment(start, end, run, minor - first, widths_)
+                    : interpolate_segment(start, start, 1, 0, widths_);
+        fragments->push_back(make_fragment(s, c, minor, value));
+        record.flags |= fragments->back().flags;
+        ++record.pixels;
+      }
+      if (last == c.span.hi) break;
+      start = end;
+    }
+  }
   return record;
 }
 

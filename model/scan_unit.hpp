@@ -43,6 +43,9 @@ class ScanUnit {
  private:
   TriangleRecord run_constant_depth(const struct Setup& setup, std::vector<Fragment>* fragments);
   TriangleRecord run_divide(const struct Setup& setup, std::vector<Fragment>* fragments);
+  TriangleRecord run_kim(const struct Setup& setup, std::vector<Fragment>* fragments);
+  TriangleRecord run_affine(const UnitTriangle& triangle, const struct Setup& setup,
+                            std::vector<Fragment>* fragments);
 
   Design design_;
   Widths widths_;

@@ -1,0 +1,38 @@
+#include "kim_datapath.hpp"
+
+namespace cdsim {
+
+KimPixel kim_pixel(const Setup& s, int64_t major_offset, int64_t minor_offset, const Widths& w,
+                   uint32_t* flags) {
+  const auto at = [&](const Plane& p) {
+    return p.at_ref + fx::Wide{major_offset} * p.per_major + fx::Wide{minor_offset} * p.per_minor;
+  };
+  // N carries uv_in_frac fraction bits of texels over q's scale: fold them into D
+  // so that I = floor(N / D) counts whole texels.
+  const fx::Wide d = at(s.q) * (fx::Wide{1} << w.uv_in_frac);
+  KimPixel out;
+  if (d <= 0) {
+    *flags |= flag::kDepthRange;
+    return out;
+  }
+  const fx::Format format = w.out_format();
+  const auto coordinate = [&](fx::Wide n, int64_t* integer) {
+    const fx::Wide whole = fx::floor_div(n, d);
+    const fx::Wide remainder = n - whole * d;  // 0 <= remainder < d
+    const fx::Wide fraction = (remainder * (fx::Wide{1} << w.kim_frac)) / d;
+    bool saturated = false;
+    // The integer register is out_int bits wide.
+    const fx::Wide clamped = fx::fit(whole, {w.out_int, 0, true}, fx::Overflow::Saturate, &saturated);
+    *integer = static_cast<int64_t>(clamped);
+    const fx::Wide raw = whole * (fx::Wide{1} << w.kim_frac) + fraction;
+    const auto value = static_cast<int64_t>(
+        fx::narrow(raw, w.kim_frac, format, fx::Round::Nearest, fx::Overflow::Saturate, &saturated));
+    out.value.saturated |= saturated;
+    return value;
+  };
+  out.value.u = coordinate(at(s.u), &out.integer_u);
+  out.value.v = coordinate(at(s.v), &out.integer_v);
+  return out;
+}
+
+}  // namespace cdsim
