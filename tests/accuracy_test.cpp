@@ -87,3 +87,53 @@ TEST(Accuracy, LinearCorrectionBeatsNoCorrectionOnRandomTriangles) {
 
 }  // namespace
 }  // namespace cdsim
+
+namespace cdsim {
+namespace {
+
+TEST(Accuracy, KimAtWideWidthsMatchesTheExactReference) {
+  Widths w = testing::wide_widths();
+  w.kim_frac = 16;
+  std::mt19937_64 rng(31);
+  for (const char* name : {"kim-iter", "kim-pipe"}) {
+    for (int n = 0; n < 100; ++n) {
+      const ScreenTriangle s = testing::random_triangle(rng, kWidth, kHeight, 50.0, 1000.0);
+      const UnitTriangle t = to_unit(s, w, size_t(n));
+      const ExactReference exact(s, t, w.subpixel_bits);
+      for (const Fragment& f : testing::run_unit(find_design(name), w, kWidth, kHeight, t)) {
+        const ExactSample x = exact.at_pixel(f.x, f.y);
+        const long double lsb = std::ldexp(1.0L, -w.out_frac);
+        // Input quantisation (as for divide) plus the truncated 16-bit fraction.
+        ASSERT_NEAR(double(f.u * lsb), double(x.u), 2e-3) << name << " triangle " << n;
+        ASSERT_NEAR(double(f.v * lsb), double(x.v), 2e-3) << name << " triangle " << n;
+      }
+    }
+  }
+}
+
+TEST(Accuracy, SubdividedAffineIsExactAtSegmentEndsAndAffineBetween) {
+  // affine-sub8 equals divide at the span's first pixel and every 8th pixel.
+  const Widths w = testing::wide_widths();
+  std::mt19937_64 rng(8);
+  for (int n = 0; n < 50; ++n) {
+    const ScreenTriangle s = testing::random_triangle(rng, kWidth, kHeight, 20.0, 500.0);
+    const UnitTriangle t = to_unit(s, w, size_t(n));
+    const auto sub = testing::run_unit(find_design("affine-sub8"), w, kWidth, kHeight, t);
+    const auto exact = testing::run_unit(find_design("divide"), w, kWidth, kHeight, t);
+    ASSERT_EQ(sub.size(), exact.size());
+    const ::cdsim::Setup setup = setup_engine(t, find_design("divide"), w, kWidth, kHeight);
+    int64_t span_start = -1, previous_major = -1;
+    for (size_t i = 0; i < sub.size(); ++i) {
+      const int64_t major = setup.x_major ? sub[i].x : sub[i].y;
+      const int64_t minor = setup.x_major ? sub[i].y : sub[i].x;
+      if (major != previous_major) span_start = minor, previous_major = major;
+      if ((minor - span_start) % 8 != 0) continue;
+      // Both round the same exact value, from s_frac and from the reciprocal product.
+      EXPECT_LE(std::abs(sub[i].u - exact[i].u), 1) << "triangle " << n << " pixel " << i;
+      EXPECT_LE(std::abs(sub[i].v - exact[i].v), 1) << "triangle " << n << " pixel " << i;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace cdsim
