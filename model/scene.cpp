@@ -1,5 +1,7 @@
 #include "scene.hpp"
 
+#include "loaders/scene_file.hpp"
+
 #include <fmt/format.h>
 
 #include <cmath>
@@ -184,6 +186,10 @@ Scene default_scene() {
 Scene load_triangle_file(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw InputError(fmt::format("{}: cannot open", path));
+  return load_triangle_stream(in, path);
+}
+
+Scene load_triangle_stream(std::istream& in, const std::string& path) {
   Scene scene;
   scene.name = path;
   scene.description = "triangle list " + path;
@@ -233,9 +239,19 @@ Scene load_triangle_file(const std::string& path) {
   return scene;
 }
 
-Scene load_scene(const std::string& spec) {
-  if (spec.empty() || spec == "default") return default_scene();
+Scene load_scene(const std::string& spec, const SceneOptions& options) {
+  if (spec.empty() || spec == "default") {
+    if (options.empty()) return default_scene();
+    return load_scene_file("default", options);
+  }
+  if (is_scene_file(spec)) return load_scene_file(spec, options);
+  if (!options.empty())
+    throw InputError(fmt::format("{}: --camera, --spawn and --resolution do not apply to a "
+                                 "screen-space triangle list",
+                                 spec));
   return load_triangle_file(spec);
 }
+
+Scene load_scene(const std::string& spec) { return load_scene(spec, SceneOptions{}); }
 
 }  // namespace cdsim

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -59,7 +60,20 @@ Scene default_scene();
 // a line "resolution W H" sets the viewport. Throws InputError naming file:line.
 Scene load_triangle_file(const std::string& path);
 
-// "default" or a .tri path.
+// The scene options every subcommand takes (docs/scenes.md). Empty or -1: not given.
+struct SceneOptions {
+  std::string camera;      // --camera "ex,ey,ez,tx,ty,tz,ux,uy,uz,fov_y[,near]"
+  int spawn = -1;          // --spawn N: the Nth spawn point of a Quake 3 map
+  std::string resolution;  // --resolution WxH
+  bool empty() const { return camera.empty() && spawn < 0 && resolution.empty(); }
+};
+
+// As load_triangle_file, from a stream; `path` names it in messages.
+Scene load_triangle_stream(std::istream& in, const std::string& path);
+
+// "default", a .tri path, or a scene or mesh file (model/loaders/scene_file.hpp):
+// .json, .obj, .gltf, .glb, .bsp, FILE.pk3:maps/NAME.bsp.
+Scene load_scene(const std::string& spec, const SceneOptions& options);
 Scene load_scene(const std::string& spec);
 
 }  // namespace cdsim

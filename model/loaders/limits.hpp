@@ -1,0 +1,27 @@
+// Caps that keep a hostile or broken input file from exhausting memory or
+// time. A file that exceeds one is refused with an InputError that names the
+// cap, never truncated silently.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+namespace cdsim::limits {
+
+// Largest file (or archive entry) read into memory. The largest OpenArena map
+// is 7.6 MB; glTF buffers of real scenes stay far below this.
+inline constexpr uint64_t kMaxFileBytes = uint64_t{256} << 20;
+
+// Largest mesh handed to the front end, in triangles (after patch tessellation).
+inline constexpr size_t kMaxTriangles = size_t{1} << 24;
+
+// Largest texture, in texels per side (SPEC §9: textures up to 16384 texels).
+inline constexpr int kMaxTextureSize = 16384;
+
+// Largest viewport, in pixels per side (SPEC §1).
+inline constexpr int kMaxResolution = 8192;
+
+// Deepest glTF node hierarchy followed (a cyclic hierarchy is refused).
+inline constexpr int kMaxNodeDepth = 64;
+
+}  // namespace cdsim::limits
