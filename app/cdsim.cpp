@@ -8,9 +8,12 @@
 #include <iostream>
 #include <unistd.h>
 
+#include "common.hpp"
+#include "sweep.hpp"
 #include "evaluate.hpp"
 #include "regress.hpp"
 #include "report.hpp"
+#include "loaders/scene_cli.hpp"
 #include "scene.hpp"
 #include "widths.hpp"
 
@@ -18,34 +21,10 @@ namespace {
 
 using namespace cdsim;
 
-struct CommonOptions {
-  std::string scene = "default";
-  std::string designs;
-  std::vector<std::string> settings;
-};
-
-void add_common(CLI::App* app, CommonOptions& options) {
-  app->add_option("--scene", options.scene, "'default' (embedded corridor) or a .tri triangle list")
-      ->capture_default_str();
-  app->add_option("--design", options.designs,
-                  "comma-separated designs (default: all): cd-none, cd-linear, cd-dense2, "
-                  "cd-dense4, cd-dense2-linear, divide");
-  app->add_option("--set", options.settings,
-                  "NAME=VALUE: change a width or microarchitecture parameter (see 'cdsim widths'); "
-                  "repeatable");
-}
-
-Widths widths_from(const CommonOptions& options) {
-  Widths widths;
-  for (const auto& s : options.settings) apply_setting(widths, s);
-  validate(widths);
-  return widths;
-}
-
 int run_command(const CommonOptions& options, const std::string& json_path, bool show_worst) {
   const Widths widths = widths_from(options);
   const std::vector<Design> designs = parse_design_list(options.designs);
-  const PreparedScene scene = prepare(load_scene(options.scene), widths);
+  const PreparedScene scene = prepare(load_scene(options.scene, options.scene_options), widths);
   std::cout << provenance(scene.scene, widths) << '\n';
   std::vector<DesignResult> results;
   for (const Design& d : designs) {
@@ -66,7 +45,7 @@ int run_command(const CommonOptions& options, const std::string& json_path, bool
 int bench_command(const CommonOptions& options, double seconds) {
   const Widths widths = widths_from(options);
   const std::vector<Design> designs = parse_design_list(options.designs);
-  const PreparedScene scene = prepare(load_scene(options.scene), widths);
+  const PreparedScene scene = prepare(load_scene(options.scene, options.scene_options), widths);
   std::cout << provenance(scene.scene, widths);
   fmt::print("single-threaded model throughput, error measurement off, at least {} s per design\n\n",
              seconds);
@@ -118,6 +97,9 @@ int main(int argc, char** argv) {
   widths->add_option("--set", widths_options.settings, "NAME=VALUE, as for run");
 
   CLI::App* regress = cdsim::rtl::add_regress_command(app);
+  SweepOptions sweep_options;
+  CLI::App* sweep = add_sweep_command(app, sweep_options);
+  CLI::App* designs = app.add_subcommand("designs", "list the designs");
 
   try {
     app.parse(argc, argv);
@@ -128,6 +110,11 @@ int main(int argc, char** argv) {
     if (*bench) return bench_command(bench_options, bench_seconds);
     if (*widths) return widths_command(widths_options);
     if (*regress) return cdsim::rtl::run_regress_command();
+    if (*sweep) return run_sweep_command(sweep_options);
+    if (*designs) {
+      for (const Design& d : all_designs()) fmt::print("{:<17} {}\n", d.name, d.summary);
+      return 0;
+    }
     return run_command(run_options, json_path, show_worst);
   } catch (const std::exception& e) {
     fmt::print(stderr, "cdsim: error: {}\n", e.what());
