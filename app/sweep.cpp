@@ -50,42 +50,6 @@ struct Config {
   std::vector<std::pair<std::string, int>> swept;
 };
 
-// The default sweep: for each design, one-dimensional sweeps of the widths
-// that decide its accuracy, around the defaults. 219 configurations.
-std::vector<Config> default_configs() {
-  const std::vector<SweepAxis> constant_depth = {
-      {"g_frac", {6, 8, 10, 12, 14, 16, 18, 20}},
-      {"s_frac", {8, 10, 12, 14, 16, 18, 20, 22, 24}},
-      {"out_frac", {2, 4, 6, 8, 10, 12}}};
-  const std::vector<SweepAxis> correction = {{"d_frac", {2, 4, 6, 8, 10, 12}}};
-  const std::vector<SweepAxis> divide = {{"recip_bits", {8, 10, 12, 14, 16, 18, 20, 22, 24}},
-                                         {"out_frac", {2, 4, 6, 8, 10, 12}}};
-  const std::vector<SweepAxis> kim = {{"kim_frac", {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12}},
-                                      {"kim_unroll", {1, 2, 4, 8}}};
-  const std::vector<SweepAxis> affine = {{"s_frac", {8, 10, 12, 14, 16, 18, 20, 22, 24}},
-                                         {"out_frac", {2, 4, 6, 8, 10, 12}}};
-  std::vector<Config> configs;
-  for (const Design& d : all_designs()) {
-    std::vector<SweepAxis> axes;
-    switch (d.kind) {
-      case Design::Kind::ConstantDepth:
-        axes = constant_depth;
-        if (d.correction) axes.insert(axes.end(), correction.begin(), correction.end());
-        break;
-      case Design::Kind::Divide: axes = divide; break;
-      case Design::Kind::Kim: axes = kim; break;
-      case Design::Kind::Affine: axes = affine; break;
-    }
-    for (const SweepAxis& axis : axes)
-      for (int value : axis.values) {
-        Config c{d, Widths{}, {{axis.name, value}}};
-        set_param(c.widths, axis.name, value);
-        configs.push_back(c);
-      }
-  }
-  return configs;
-}
-
 // Every combination of the axes, for every design.
 std::vector<Config> product_configs(const std::vector<Design>& designs,
                                     const std::vector<SweepAxis>& axes) {
@@ -110,10 +74,51 @@ std::vector<Config> product_configs(const std::vector<Design>& designs,
   return configs;
 }
 
+// The default sweep: for each design, one-dimensional sweeps of the widths
+// that decide its accuracy, around the defaults (251 configurations).
+std::vector<Config> default_configs() {
+  const std::vector<SweepAxis> constant_depth = {
+      {"g_frac", {6, 8, 10, 12, 14, 16, 18, 20}},
+      {"s_frac", {8, 10, 12, 14, 16, 18, 20, 22, 24}},
+      {"out_frac", {2, 4, 6, 8, 10, 12}}};
+  const std::vector<SweepAxis> correction = {{"d_frac", {2, 4, 6, 8, 10, 12}}};
+  const std::vector<SweepAxis> divide = {{"recip_bits", {8, 10, 12, 14, 16, 18, 20, 22, 24}},
+                                         {"out_frac", {2, 4, 6, 8, 10, 12}}};
+  // Kim-style: the full grid of fraction bits and unrolling, so that its
+  // Pareto front is its best at every error level.
+  const std::vector<SweepAxis> kim = {{"kim_frac", {1, 2, 3, 4, 6, 8, 10, 12}},
+                                      {"kim_unroll", {1, 2, 4, 8}}};
+  const std::vector<SweepAxis> affine = {{"s_frac", {8, 10, 12, 14, 16, 18, 20, 22, 24}},
+                                         {"out_frac", {2, 4, 6, 8, 10, 12}}};
+  std::vector<Config> configs;
+  for (const Design& d : all_designs()) {
+    std::vector<SweepAxis> axes;
+    switch (d.kind) {
+      case Design::Kind::ConstantDepth:
+        axes = constant_depth;
+        if (d.correction) axes.insert(axes.end(), correction.begin(), correction.end());
+        break;
+      case Design::Kind::Divide: axes = divide; break;
+      case Design::Kind::Kim: {
+        for (const Config& c : product_configs({d}, kim)) configs.push_back(c);
+        continue;
+      }
+      case Design::Kind::Affine: axes = affine; break;
+    }
+    for (const SweepAxis& axis : axes)
+      for (int value : axis.values) {
+        Config c{d, Widths{}, {{axis.name, value}}};
+        set_param(c.widths, axis.name, value);
+        configs.push_back(c);
+      }
+  }
+  return configs;
+}
+
 std::string csv_header() {
   std::string h = "scene,design";
   for (const auto& p : param_table()) h += fmt::format(",{}", p.name);
-  h += ",swept,pixels,cycles,pixels_per_clock,table_depth,table_bits,register_bits,error_mean,"
+  h += ",swept,pixels,cycles,pixels_per_clock,table_entries,table_bits,register_bits,error_mean,"
        "error_rms,error_p99,error_max,footprint_max,texel_mismatch,over_lsb,flagged_triangles";
   return h;
 }
@@ -282,6 +287,7 @@ int run_sweep_command(const SweepOptions& options) {
                    {"triangles", scene.triangles.size()}, {"resolution", {scene.width, scene.height}}};
   json["build"] = build_id();
   json["seed"] = nullptr;
+  for (const auto& p : param_table()) json["defaults"][p.name] = p.default_value;
   json["rows"] = nlohmann::json::array();
   for (size_t i = 0; i < configs.size(); ++i) {
     csv << csv_row(scene.name, configs[i], results[i]) << '\n';
