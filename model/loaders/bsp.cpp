@@ -310,9 +310,11 @@ void BspReader::read_spawns() {
 }
 
 BspMap BspReader::read() {
-  if (bytes_.size() < kHeaderBytes)
+  const auto truncated = [&] {
     fail(fmt::format("truncated: {} bytes, but a Quake 3 BSP header needs {}", bytes_.size(),
                      kHeaderBytes));
+  };
+  if (bytes_.size() < 4) truncated();
   if (std::memcmp(bytes_.at(0), "IBSP", 4) != 0) {
     std::string magic;
     for (size_t i = 0; i < 4; ++i) {
@@ -321,9 +323,11 @@ BspMap BspReader::read() {
     }
     fail(fmt::format("magic '{}' at byte 0 is not 'IBSP': not a Quake 3 BSP", magic));
   }
+  if (bytes_.size() < 8) truncated();
   const int32_t version = bytes_.i32(4);
   if (version != 46)
     fail(fmt::format("version {} at byte 4; only Quake 3 / OpenArena version 46 is read", version));
+  if (bytes_.size() < kHeaderBytes) truncated();
   read_shaders();
   read_vertices();
   read_meshverts();

@@ -357,6 +357,14 @@ LoadedGltf load(const uint8_t* data, size_t size, const std::string& name,
   tinygltf::Model model;
   std::string err, warn;
   const bool binary = size >= 4 && std::memcmp(data, "glTF", 4) == 0;
+  if (binary && size >= 8) {
+    const uint32_t version = uint32_t(data[4]) | uint32_t(data[5]) << 8 | uint32_t(data[6]) << 16 |
+                             uint32_t(data[7]) << 24;
+    if (version != 2)
+      throw InputError(fmt::format("{}: binary glTF (.glb) version {} at byte 4; only version 2 "
+                                   "is read",
+                                   name, version));
+  }
   const bool ok =
       binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, data, unsigned(size), base_dir)
              : loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(data),
