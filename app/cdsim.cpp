@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "common.hpp"
+#include "render.hpp"
 #include "sweep.hpp"
 #include "evaluate.hpp"
 #include "regress.hpp"
@@ -100,6 +101,8 @@ int main(int argc, char** argv) {
   SweepOptions sweep_options;
   CLI::App* sweep = add_sweep_command(app, sweep_options);
   CLI::App* designs = app.add_subcommand("designs", "list the designs");
+  RenderOptions render_options;
+  CLI::App* render = add_render_command(app, render_options);
 
   try {
     app.parse(argc, argv);
@@ -111,6 +114,7 @@ int main(int argc, char** argv) {
     if (*widths) return widths_command(widths_options);
     if (*regress) return cdsim::rtl::run_regress_command();
     if (*sweep) return run_sweep_command(sweep_options);
+    if (*render) return run_render_command(render_options);
     if (*designs) {
       for (const Design& d : all_designs()) fmt::print("{:<17} {}\n", d.name, d.summary);
       return 0;

@@ -37,6 +37,7 @@ ExactSample ExactReference::at_pixel(int64_t pixel_x, int64_t pixel_y) const {
     vq += weight * vq_[i];
   }
   ExactSample s;
+  s.q = q / std::fabs(static_cast<long double>(edges_.det));  // E_i sum to |det|
   s.u = uq / q;
   s.v = vq / q;
   const long double du_dx = (uq_dx_ - s.u * q_dx_) / q, dv_dx = (vq_dx_ - s.v * q_dx_) / q;

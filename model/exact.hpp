@@ -13,6 +13,7 @@ namespace cdsim {
 struct ExactSample {
   long double u = 0, v = 0;
   long double footprint = 0;  // rho: the longer of |d(u,v)/dx| and |d(u,v)/dy|
+  long double q = 0;          // 1/w at the pixel centre (larger is nearer)
 };
 
 class ExactReference {
