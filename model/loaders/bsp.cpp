@@ -406,11 +406,24 @@ std::vector<std::string> image_candidates(const std::string& shader) {
 
 }  // namespace
 
+BspMap load_bsp_from_archive(const Pk3Archive& archive, const std::string& entry,
+                             glm::ivec2 default_texture_size) {
+  const auto bytes = archive.read(entry);
+  if (!bytes) throw InputError(fmt::format("{}: the archive has no entry '{}'", archive.name(), entry));
+  const TextureSizeLookup lookup = [&](const std::string& shader) -> std::optional<glm::ivec2> {
+    for (const std::string& candidate : image_candidates(shader))
+      if (const auto image = archive.read(candidate))
+        return image_size_from_memory(image->data(), image->size(), archive.name() + ":" + candidate);
+    return std::nullopt;
+  };
+  return load_bsp_from_memory(bytes->data(), bytes->size(), archive.name() + ":" + entry,
+                              default_texture_size, lookup);
+}
+
 BspMap load_bsp(const std::string& spec, glm::ivec2 default_texture_size) {
   if (const auto member = split_pk3_spec(spec)) {
     const Pk3Archive archive = Pk3Archive::open_file(member->first);
-    const auto bytes = archive.read(member->second);
-    if (!bytes) {
+    if (!archive.contains(member->second)) {
       std::vector<std::string> maps;
       for (const std::string& entry : archive.entries())
         if (ends_with_ignoring_case(entry, ".bsp")) maps.push_back(entry);
@@ -421,13 +434,7 @@ BspMap load_bsp(const std::string& spec, glm::ivec2 default_texture_size) {
           fmt::join(maps.begin(), maps.begin() + static_cast<std::ptrdiff_t>(shown), ", "),
           maps.size() > shown ? ", ..." : ""));
     }
-    const TextureSizeLookup lookup = [&](const std::string& shader) -> std::optional<glm::ivec2> {
-      for (const std::string& candidate : image_candidates(shader))
-        if (const auto image = archive.read(candidate))
-          return image_size_from_memory(image->data(), image->size(), archive.name() + ":" + candidate);
-      return std::nullopt;
-    };
-    return load_bsp_from_memory(bytes->data(), bytes->size(), spec, default_texture_size, lookup);
+    return load_bsp_from_archive(archive, member->second, default_texture_size);
   }
   const std::vector<uint8_t> bytes = read_file_bytes(spec);
   std::string root = directory_of(spec);

@@ -64,6 +64,11 @@ BspMap load_bsp_from_memory(const uint8_t* data, size_t size, const std::string&
 // the directory above maps/), else `default_texture_size`.
 BspMap load_bsp(const std::string& spec, glm::ivec2 default_texture_size);
 
+class Pk3Archive;
+// A map inside an open archive, with texture sizes from the same archive.
+BspMap load_bsp_from_archive(const Pk3Archive& archive, const std::string& entry,
+                             glm::ivec2 default_texture_size);
+
 // Quake 3's entity text: a list of { "key" "value" ... } blocks. Throws
 // InputError naming the byte offset of a syntax error.
 std::vector<std::vector<std::pair<std::string, std::string>>> parse_entities(

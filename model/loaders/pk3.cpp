@@ -73,6 +73,10 @@ std::vector<std::string> Pk3Archive::entries() const {
   return names;
 }
 
+bool Pk3Archive::contains(const std::string& entry) const {
+  return zip_name_locate(handle_->archive, entry.c_str(), ZIP_FL_NOCASE) >= 0;
+}
+
 std::optional<std::vector<uint8_t>> Pk3Archive::read(const std::string& entry) const {
   const zip_int64_t index = zip_name_locate(handle_->archive, entry.c_str(), ZIP_FL_NOCASE);
   if (index < 0) return std::nullopt;

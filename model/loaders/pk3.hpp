@@ -25,6 +25,9 @@ class Pk3Archive {
   // Entry names, in archive order.
   std::vector<std::string> entries() const;
 
+  // Whether the archive holds `entry` (ignoring case).
+  bool contains(const std::string& entry) const;
+
   // The entry's bytes, looked up ignoring case as Quake does; nothing when
   // absent. Throws InputError for a corrupt entry or one over the size cap.
   std::optional<std::vector<uint8_t>> read(const std::string& entry) const;
