@@ -10,6 +10,7 @@
 
 #include "common.hpp"
 #include "render.hpp"
+#include "size.hpp"
 #include "sweep.hpp"
 #include "evaluate.hpp"
 #include "regress.hpp"
@@ -103,6 +104,8 @@ int main(int argc, char** argv) {
   CLI::App* designs = app.add_subcommand("designs", "list the designs");
   RenderOptions render_options;
   CLI::App* render = add_render_command(app, render_options);
+  SizeOptions size_options;
+  CLI::App* size = add_size_command(app, size_options);
 
   try {
     app.parse(argc, argv);
@@ -115,6 +118,7 @@ int main(int argc, char** argv) {
     if (*regress) return cdsim::rtl::run_regress_command();
     if (*sweep) return run_sweep_command(sweep_options);
     if (*render) return run_render_command(render_options);
+    if (*size) return run_size_command(size_options);
     if (*designs) {
       for (const Design& d : all_designs()) fmt::print("{:<17} {}\n", d.name, d.summary);
       return 0;

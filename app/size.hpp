@@ -1,0 +1,23 @@
+// cdsim size: the smallest widths and table depth that meet an error target on
+// a scene, found by coordinate descent from wide widths, then confirmed by
+// running the model at the result.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <string>
+
+#include "common.hpp"
+
+namespace cdsim {
+
+struct SizeOptions {
+  CommonOptions common;
+  double max_error = 0.5;
+  std::string metric = "texels";    // texels | footprint
+  std::string statistic = "max";    // max | p99 | mean
+};
+
+CLI::App* add_size_command(CLI::App& app, SizeOptions& options);
+int run_size_command(const SizeOptions& options);
+
+}  // namespace cdsim
