@@ -93,7 +93,7 @@ int run_size_command(const SizeOptions& options) {
   Widths w = widest(user);
   double value = 0;
   if (!meets(w, &value)) {
-    fmt::print("not reachable: at the widest widths the {} {} error is {:.4g} > {}\n",
+    fmt::print(stderr, "cdsim: not reachable: at the widest widths the {} {} error is {:.4g} > {}\n",
                options.statistic, options.metric, value, options.max_error);
     return 1;
   }
