@@ -501,8 +501,10 @@ TEST(Pk3, MapAndTextureSizeComeFromTheArchive) {
   // Case does not matter inside a pk3, as in Quake.
   EXPECT_EQ(load_bsp(kData + "tiny.pk3:MAPS/Tiny.bsp", kDefault).mesh.triangles.size(),
             map.mesh.triangles.size());
-  // The loose file finds no textures beside it and falls back.
-  EXPECT_EQ(load_bsp(kData + "tiny.bsp", kDefault).mesh.texture_size.front(), kDefault);
+  // The loose file finds its texture in the .pk3 beside it, as Quake's search path does.
+  EXPECT_EQ(load_bsp(kData + "tiny.bsp", kDefault).mesh.texture_size.front(), glm::ivec2(16, 8));
+  // A shader without an image anywhere falls back to the default size.
+  EXPECT_EQ(load_bsp(kData + "tiny.bsp", kDefault).mesh.texture_size[2], kDefault);
 }
 
 TEST(Pk3, MalformedArchivesAndMissingEntriesAreRefused) {

@@ -3,8 +3,11 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
+#include <functional>
 #include <map>
 
 #include "file_io.hpp"
@@ -406,15 +409,78 @@ std::vector<std::string> image_candidates(const std::string& shader) {
 
 }  // namespace
 
+namespace {
+
+// Quake 3's search path for a map's images: the map's own archive, then the
+// other .pk3 files of its directory, later names first (a later pk3 overrides
+// an earlier one in Quake), then loose files under `loose_root`. Archives are
+// opened only when a lookup needs them; one that cannot be opened is skipped.
+class TextureSearch {
+ public:
+  // `directory`: where sibling archives are looked for; nothing when empty.
+  TextureSearch(const Pk3Archive* own, std::optional<std::string> directory, std::string skip,
+                std::string loose_root)
+      : own_(own), directory_(std::move(directory)), skip_(std::move(skip)),
+        loose_root_(std::move(loose_root)) {}
+
+  std::optional<glm::ivec2> operator()(const std::string& shader) {
+    const std::vector<std::string> candidates = image_candidates(shader);
+    if (own_)
+      if (auto size = find(*own_, candidates)) return size;
+    open_siblings();
+    for (const Pk3Archive& archive : siblings_)
+      if (auto size = find(archive, candidates)) return size;
+    if (!loose_root_.empty())
+      for (const std::string& candidate : candidates)
+        if (auto size = image_size_from_file(loose_root_ + candidate)) return size;
+    return std::nullopt;
+  }
+
+ private:
+  static std::optional<glm::ivec2> find(const Pk3Archive& archive,
+                                        const std::vector<std::string>& candidates) {
+    for (const std::string& candidate : candidates)
+      if (archive.contains(candidate))
+        if (const auto image = archive.read(candidate))
+          return image_size_from_memory(image->data(), image->size(), archive.name() + ":" + candidate);
+    return std::nullopt;
+  }
+
+  void open_siblings() {
+    if (siblings_opened_ || !directory_) return;
+    siblings_opened_ = true;
+    const std::string& directory = *directory_;
+    std::vector<std::string> names;
+    std::error_code error;
+    for (const auto& entry : std::filesystem::directory_iterator(
+             directory.empty() ? std::string(".") : directory, error)) {
+      const std::string name = entry.path().filename().string();
+      if (ends_with_ignoring_case(name, ".pk3") && name != skip_) names.push_back(name);
+    }
+    std::sort(names.begin(), names.end(), std::greater<>());
+    for (const std::string& name : names) {
+      try {
+        siblings_.push_back(Pk3Archive::open_file(directory + name));
+      } catch (const InputError&) {
+      }
+    }
+  }
+
+  const Pk3Archive* own_;
+  std::optional<std::string> directory_;
+  std::string skip_, loose_root_;
+  bool siblings_opened_ = false;
+  std::vector<Pk3Archive> siblings_;
+};
+
+}  // namespace
+
 BspMap load_bsp_from_archive(const Pk3Archive& archive, const std::string& entry,
                              glm::ivec2 default_texture_size) {
   const auto bytes = archive.read(entry);
   if (!bytes) throw InputError(fmt::format("{}: the archive has no entry '{}'", archive.name(), entry));
-  const TextureSizeLookup lookup = [&](const std::string& shader) -> std::optional<glm::ivec2> {
-    for (const std::string& candidate : image_candidates(shader))
-      if (const auto image = archive.read(candidate))
-        return image_size_from_memory(image->data(), image->size(), archive.name() + ":" + candidate);
-    return std::nullopt;
+  const TextureSizeLookup lookup = [&](const std::string& shader) {
+    return TextureSearch(&archive, std::nullopt, "", "")(shader);
   };
   return load_bsp_from_memory(bytes->data(), bytes->size(), archive.name() + ":" + entry,
                               default_texture_size, lookup);
@@ -434,16 +500,17 @@ BspMap load_bsp(const std::string& spec, glm::ivec2 default_texture_size) {
           fmt::join(maps.begin(), maps.begin() + static_cast<std::ptrdiff_t>(shown), ", "),
           maps.size() > shown ? ", ..." : ""));
     }
-    return load_bsp_from_archive(archive, member->second, default_texture_size);
+    const auto bytes = archive.read(member->second);
+    const std::string directory = directory_of(member->first);
+    TextureSearch search(&archive, directory, member->first.substr(directory.size()), "");
+    const TextureSizeLookup lookup = [&](const std::string& shader) { return search(shader); };
+    return load_bsp_from_memory(bytes->data(), bytes->size(), spec, default_texture_size, lookup);
   }
   const std::vector<uint8_t> bytes = read_file_bytes(spec);
   std::string root = directory_of(spec);
   if (ends_with_ignoring_case(root, "maps/")) root.resize(root.size() - 5);
-  const TextureSizeLookup lookup = [&](const std::string& shader) -> std::optional<glm::ivec2> {
-    for (const std::string& candidate : image_candidates(shader))
-      if (const auto size = image_size_from_file(root + candidate)) return size;
-    return std::nullopt;
-  };
+  TextureSearch search(nullptr, root, "", root.empty() ? std::string("./") : root);
+  const TextureSizeLookup lookup = [&](const std::string& shader) { return search(shader); };
   return load_bsp_from_memory(bytes.data(), bytes.size(), spec, default_texture_size, lookup);
 }
 
