@@ -228,6 +228,20 @@ TEST(Obj, MalformedFilesAreRefusedWithTheFaceNamed) {
   EXPECT_INPUT_ERROR([] { load_obj(kData + "no_such.obj", kDefault); }, {"no_such.obj", "cannot open"});
 }
 
+// Two inputs on which tinyobjloader 2.0.0rc10 itself has undefined behaviour
+// (found by fuzz_obj): the loader refuses the first and hides the second.
+TEST(Obj, InputsThatTinyobjloaderMishandlesAreStoppedFirst) {
+  EXPECT_INPUT_ERROR([] { load_obj_from_memory("v 1e2147483649 0 0\n", "", "exp.obj", kDefault); },
+                     {"exp.obj:1", "exponent of 10 digits"});
+  EXPECT_INPUT_ERROR([] { load_obj_from_memory("mtllib m.mtl\n", "newmtl a\nNs 1.5e-99999999\n", "m.obj", kDefault); },
+                     {"m.mtl:2", "exponent of 8 digits"});
+  const LoadedObj obj = load_obj_from_memory("vw 2 11111111111111111111111111111111111111 0.5\n"
+                                             "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nl 1 2\n",
+                                             "", "vw.obj", kDefault);
+  EXPECT_EQ(obj.mesh.triangles.size(), 1u);
+  EXPECT_NE(obj.summary.find("2 lines of unused directives skipped"), std::string::npos) << obj.summary;
+}
+
 TEST(Obj, MissingMaterialLibraryFallsBackToTheDefaultSize) {
   const LoadedObj obj = load_obj_from_memory(
       "mtllib nowhere.mtl\nusemtl x\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "", "m.obj", {32, 16});

@@ -12,8 +12,10 @@ namespace cdsim::limits {
 // is 7.6 MB; glTF buffers of real scenes stay far below this.
 inline constexpr uint64_t kMaxFileBytes = uint64_t{256} << 20;
 
-// Largest mesh handed to the front end, in triangles (after patch tessellation).
-inline constexpr size_t kMaxTriangles = size_t{1} << 24;
+// Largest mesh handed to the front end, in triangles (after patch tessellation
+// and glTF instancing): about 600 MB of mesh. The largest OpenArena map makes
+// a few hundred thousand.
+inline constexpr size_t kMaxTriangles = size_t{1} << 22;
 
 // Largest texture, in texels per side (SPEC §9: textures up to 16384 texels).
 inline constexpr int kMaxTextureSize = 16384;

@@ -2,7 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <cctype>
+#include <fstream>
 #include <functional>
+#include <set>
 #include <sstream>
 
 #include "file_io.hpp"
@@ -25,9 +28,96 @@ namespace {
 
 using ImageLookup = std::function<std::optional<glm::ivec2>(const std::string& texture_name)>;
 
-LoadedObj load_obj_stream(std::istream& obj, tinyobj::MaterialReader& materials_reader,
-                          const std::string& name, glm::ivec2 default_texture_size,
-                          const ImageLookup& lookup) {
+// tinyobjloader 2.0.0rc10 has undefined behaviour on two inputs the fuzzer
+// found: a number whose exponent has 10 digits overflows an int in
+// tryParseDouble, and a huge joint id on a `vw` line overflows a float-to-int
+// conversion. Exponents are therefore checked here first (a real exponent
+// never needs more than 4 digits), and only the directives cdsim uses reach
+// tinyobjloader.
+void check_exponents(const std::string& line, const std::string& name, size_t line_number) {
+  for (size_t i = 1; i < line.size(); ++i) {
+    if ((line[i] != 'e' && line[i] != 'E') ||
+        !(std::isdigit(static_cast<unsigned char>(line[i - 1])) || line[i - 1] == '.'))
+      continue;
+    size_t j = i + 1;
+    if (j < line.size() && (line[j] == '+' || line[j] == '-')) ++j;
+    size_t digits = 0;
+    while (j + digits < line.size() && std::isdigit(static_cast<unsigned char>(line[j + digits])))
+      ++digits;
+    if (digits > 6)
+      throw InputError(fmt::format("{}:{}: a number has an exponent of {} digits", name,
+                                   line_number, digits));
+  }
+}
+
+// The OBJ text tinyobjloader sees: vertices, texture coordinates, normals,
+// faces, groups, smoothing and materials; every other line (vw, vp, l, p,
+// curv, ...) becomes empty so that line numbers stay the same.
+std::string filter_obj(const std::string& text, const std::string& name, size_t* dropped) {
+  static const std::set<std::string> kept = {"v", "vt", "vn", "f", "o", "g", "s", "usemtl", "mtllib"};
+  std::string out;
+  out.reserve(text.size());
+  size_t line_number = 0;
+  for (size_t start = 0; start < text.size();) {
+    size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    const std::string line = text.substr(start, end - start);
+    ++line_number;
+    const size_t first = line.find_first_not_of(" \t\r");
+    const size_t last = first == std::string::npos ? first : line.find_first_of(" \t\r", first);
+    const std::string directive =
+        first == std::string::npos ? std::string() : line.substr(first, last - first);
+    if (directive.empty() || directive[0] == '#') {
+      out += '\n';
+    } else if (kept.count(directive)) {
+      check_exponents(line, name, line_number);
+      out += line;
+      out += '\n';
+    } else {
+      ++*dropped;
+      out += '\n';
+    }
+    start = end + 1;
+  }
+  return out;
+}
+
+// Material libraries through the same exponent check, from files beside the
+// .obj (with the size cap) or from one text in memory.
+class CheckedMaterialReader : public tinyobj::MaterialReader {
+ public:
+  using Source = std::function<std::optional<std::string>(const std::string& library)>;
+  explicit CheckedMaterialReader(Source source) : source_(std::move(source)) {}
+
+  bool operator()(const std::string& library, std::vector<tinyobj::material_t>* materials,
+                  std::map<std::string, int>* material_map, std::string* warn,
+                  std::string* err) override {
+    const std::optional<std::string> text = source_(library);
+    if (!text) {
+      if (warn) *warn += fmt::format("material library '{}' not found\n", library);
+      return false;
+    }
+    size_t line_number = 0;
+    for (size_t start = 0; start < text->size();) {
+      size_t end = text->find('\n', start);
+      if (end == std::string::npos) end = text->size();
+      check_exponents(text->substr(start, end - start), library, ++line_number);
+      start = end + 1;
+    }
+    std::istringstream stream(*text);
+    tinyobj::LoadMtl(material_map, materials, &stream, warn, err);
+    return true;
+  }
+
+ private:
+  Source source_;
+};
+
+LoadedObj load_obj_text(const std::string& text, tinyobj::MaterialReader& materials_reader,
+                        const std::string& name, glm::ivec2 default_texture_size,
+                        const ImageLookup& lookup) {
+  size_t dropped = 0;
+  std::istringstream obj(filter_obj(text, name, &dropped));
   tinyobj::attrib_t attrib;
   std::vector<tinyobj::shape_t> shapes;
   std::vector<tinyobj::material_t> materials;
@@ -106,6 +196,7 @@ LoadedObj load_obj_stream(std::istream& obj, tinyobj::MaterialReader& materials_
   out.summary = fmt::format("{} faces, {} triangles, {} materials ({} with a known texture size)",
                             faces, builder.triangle_count(), materials.size(), sized);
   if (skipped) out.summary += fmt::format(", {} faces of fewer than 3 corners skipped", skipped);
+  if (dropped) out.summary += fmt::format(", {} lines of unused directives skipped", dropped);
   if (!warn.empty()) out.summary += "; tinyobjloader: " + warn;
   out.mesh = builder.take();
   return out;
@@ -115,20 +206,23 @@ LoadedObj load_obj_stream(std::istream& obj, tinyobj::MaterialReader& materials_
 
 LoadedObj load_obj(const std::string& path, glm::ivec2 default_texture_size) {
   const std::vector<uint8_t> bytes = read_file_bytes(path);
-  std::istringstream obj(std::string(bytes.begin(), bytes.end()));
-  const std::string directory = directory_of(path);
-  tinyobj::MaterialFileReader materials(directory);
+  CheckedMaterialReader materials([&](const std::string& library) -> std::optional<std::string> {
+    const std::string mtl_path = resolve_relative(path, library);
+    if (!std::ifstream(mtl_path)) return std::nullopt;
+    const std::vector<uint8_t> mtl = read_file_bytes(mtl_path);
+    return std::string(mtl.begin(), mtl.end());
+  });
   const ImageLookup lookup = [&](const std::string& texture) {
     return image_size_from_file(resolve_relative(path, texture));
   };
-  return load_obj_stream(obj, materials, path, default_texture_size, lookup);
+  return load_obj_text(std::string(bytes.begin(), bytes.end()), materials, path,
+                       default_texture_size, lookup);
 }
 
 LoadedObj load_obj_from_memory(const std::string& obj_text, const std::string& mtl_text,
                                const std::string& name, glm::ivec2 default_texture_size) {
-  std::istringstream obj(obj_text), mtl(mtl_text);
-  tinyobj::MaterialStreamReader materials(mtl);
-  return load_obj_stream(obj, materials, name, default_texture_size, {});
+  CheckedMaterialReader materials([&](const std::string&) { return std::optional<std::string>(mtl_text); });
+  return load_obj_text(obj_text, materials, name, default_texture_size, {});
 }
 
 }  // namespace cdsim

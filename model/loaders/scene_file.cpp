@@ -149,7 +149,7 @@ void validate_camera(const Camera& c, const std::string& where) {
   const glm::dvec3 forward = c.target - c.eye;
   const double length = glm::length(forward), up_length = glm::length(c.up);
   if (!(length > 0) || !std::isfinite(length)) fail("eye and target coincide (or are too far apart)");
-  if (!(up_length > 0) || !std::isfinite(up_length)) fail("up vector is zero");
+  if (!(up_length > 0) || !std::isfinite(up_length)) fail("up vector is zero (or too long)");
   if (!(glm::length(glm::cross(forward / length, c.up / up_length)) > 1e-9))
     fail("up vector is parallel to the view direction");
 }
