@@ -13,6 +13,7 @@
 #include "size.hpp"
 #include "sweep.hpp"
 #include "evaluate.hpp"
+#include "hard_cases.hpp"
 #include "regress.hpp"
 #include "report.hpp"
 #include "loaders/scene_cli.hpp"
@@ -102,6 +103,7 @@ int main(int argc, char** argv) {
   SweepOptions sweep_options;
   CLI::App* sweep = add_sweep_command(app, sweep_options);
   CLI::App* designs = app.add_subcommand("designs", "list the designs");
+  CLI::App* hard = app.add_subcommand("hard-cases", "list the named hard cases (--scene hard:NAME, hard:all)");
   RenderOptions render_options;
   CLI::App* render = add_render_command(app, render_options);
   SizeOptions size_options;
@@ -119,6 +121,10 @@ int main(int argc, char** argv) {
     if (*sweep) return run_sweep_command(sweep_options);
     if (*render) return run_render_command(render_options);
     if (*size) return run_size_command(size_options);
+    if (*hard) {
+      for (const HardCase& c : hard_cases()) fmt::print("hard:{:<15} {}\n", c.name, c.expected);
+      return 0;
+    }
     if (*designs) {
       for (const Design& d : all_designs()) fmt::print("{:<17} {}\n", d.name, d.summary);
       return 0;

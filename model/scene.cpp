@@ -1,5 +1,7 @@
 #include "scene.hpp"
 
+#include "hard_cases.hpp"
+
 #include "loaders/scene_file.hpp"
 
 #include <fmt/format.h>
@@ -240,6 +242,11 @@ Scene load_triangle_stream(std::istream& in, const std::string& path) {
 }
 
 Scene load_scene(const std::string& spec, const SceneOptions& options) {
+  if (is_hard_case(spec)) {
+    if (!options.empty())
+      throw InputError(fmt::format("{}: --camera, --spawn and --resolution do not apply to a hard case", spec));
+    return hard_case_scene(spec);
+  }
   if (spec.empty() || spec == "default") {
     if (options.empty()) return default_scene();
     return load_scene_file("default", options);
