@@ -6,6 +6,8 @@
 // unit samples at the next rising edge.
 #include "regress.hpp"
 
+#include "loaders/scene_cli.hpp"
+
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <systemc.h>
@@ -36,6 +38,7 @@ namespace {
 
 struct Options {
   std::string scene = "default";
+  SceneOptions scene_options;
   size_t random = 0;
   uint64_t seed = 1;
   double backpressure = 0.0;
@@ -326,9 +329,7 @@ std::vector<const Design*> designs_for(const std::string& name) {
 CLI::App* add_regress_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "regress", "run the SystemVerilog RTL (Verilator + SystemC) against the model, bit and cycle exact");
-  cmd->add_option("--scene", options.scene,
-                  "'default' (embedded corridor) or a .tri triangle list; ignored with --random")
-      ->capture_default_str();
+  add_scene_options(cmd, options.scene, options.scene_options);  // ignored with --random
   cmd->add_option("--random", options.random, "N seeded random triangles (with SPEC §9 hard cases)");
   cmd->add_option("--seed", options.seed, "seed of the random triangles and of the back-pressure")
       ->capture_default_str();
@@ -356,7 +357,7 @@ int run_regress_command() {
       jobs = random_jobs(options.random, options.seed, widths, designs);
       std::cout << fmt::format("source: {} random triangles (seed {})\n", options.random, options.seed);
     } else {
-      const PreparedScene scene = prepare(load_scene(options.scene), widths);
+      const PreparedScene scene = prepare(load_scene(options.scene, options.scene_options), widths);
       for (size_t i = 0; i < scene.unit.size(); ++i) {
         Job job;
         job.triangle = scene.unit[i];
