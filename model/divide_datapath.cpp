@@ -4,9 +4,7 @@ namespace cdsim {
 
 CorrectedValue divide_uv(const Setup& s, int64_t major_offset, int64_t minor_offset,
                          const Widths& w, const fx::Format& format, uint32_t* flags) {
-  const auto at = [&](const Plane& p) {
-    return p.at_ref + fx::Wide{major_offset} * p.per_major + fx::Wide{minor_offset} * p.per_minor;
-  };
+  const auto at = [&](const Plane& p) { return p.at(major_offset, minor_offset); };
   const Reciprocal r = reciprocal(at(s.q), w.recip_bits);
   if (r.out_of_range) *flags |= flag::kDepthRange;
   const int product_frac = w.recip_bits + r.exponent + w.uv_in_frac;

@@ -4,9 +4,7 @@ namespace cdsim {
 
 KimPixel kim_pixel(const Setup& s, int64_t major_offset, int64_t minor_offset, const Widths& w,
                    uint32_t* flags) {
-  const auto at = [&](const Plane& p) {
-    return p.at_ref + fx::Wide{major_offset} * p.per_major + fx::Wide{minor_offset} * p.per_minor;
-  };
+  const auto at = [&](const Plane& p) { return p.at(major_offset, minor_offset); };
   // N carries uv_in_frac fraction bits of texels over q's scale: fold them into D
   // so that I = floor(N / D) counts whole texels.
   const fx::Wide d = at(s.q) * (fx::Wide{1} << w.uv_in_frac);

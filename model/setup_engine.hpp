@@ -18,6 +18,11 @@ namespace cdsim {
 struct Plane {
   fx::Wide at_ref = 0, per_major = 0, per_minor = 0;
   fx::Wide per_line = 0;  // per_minor / density
+
+  // The value at a pixel, offsets from the reference pixel along each axis (exact).
+  fx::Wide at(int64_t major_offset, int64_t minor_offset) const {
+    return at_ref + fx::Wide{major_offset} * per_major + fx::Wide{minor_offset} * per_minor;
+  }
 };
 
 struct Setup {
