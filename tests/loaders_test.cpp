@@ -579,9 +579,9 @@ TEST(OpenArena, EveryMapLoadsWithSpawnPoints) {
   EXPECT_GT(patches, 100u);
 }
 
-TEST(OpenArena, TwoMapsFromSpawnZeroReachTheUnit) {
+TEST(OpenArena, ThreeMapsFromSpawnZeroReachTheUnit) {
   if (!std::ifstream(kOpenArena)) GTEST_SKIP() << kOpenArena << " is missing (Debian package openarena-081-maps)";
-  for (const char* name : {"maps/oa_dm1.bsp", "maps/aggressor.bsp"}) {
+  for (const char* name : {"maps/oa_dm1.bsp", "maps/aggressor.bsp", "maps/oa_dm3.bsp"}) {
     SceneOptions options;
     options.spawn = 0;
     const Scene scene = load_scene(kOpenArena + ":" + name, options);
