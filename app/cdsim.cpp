@@ -18,6 +18,7 @@
 #include "report.hpp"
 #include "loaders/scene_cli.hpp"
 #include "scene.hpp"
+#include "derived_widths.hpp"
 #include "widths.hpp"
 
 namespace {
@@ -68,12 +69,29 @@ int bench_command(const CommonOptions& options, double seconds) {
   return 0;
 }
 
-int widths_command(const CommonOptions& options) {
+int widths_command(const CommonOptions& options, const std::string& sv_path) {
   const Widths widths = widths_from(options);
-  fmt::print("{:<16} {:>7} {:>7} {:>7}  {}\n", "parameter", "value", "min", "max", "meaning");
+  if (!sv_path.empty()) {
+    const std::string text = rtl_header(widths, "custom");
+    if (sv_path == "-") {
+      std::cout << text;
+      return 0;
+    }
+    std::ofstream out(sv_path);
+    out << text;
+    out.close();
+    if (!out) throw std::runtime_error(fmt::format("{}: cannot write", sv_path));
+    std::cout << "wrote " << sv_path << '\n';
+    return 0;
+  }
+  fmt::print("{:<18} {:>7} {:>7} {:>7}  {}\n", "parameter", "value", "min", "max", "meaning");
   for (const auto& p : param_table())
-    fmt::print("{:<16} {:>7} {:>7} {:>7}  {}\n", p.name, widths.*(p.field), p.min_value,
+    fmt::print("{:<18} {:>7} {:>7} {:>7}  {}\n", p.name, widths.*(p.field), p.min_value,
                p.max_value, p.meaning);
+  const DerivedWidths derived = derive(widths);
+  fmt::print("\n{:<24} {:>7}  {}\n", "derived (RTL)", "value", "meaning");
+  for (const auto& p : derived_table())
+    fmt::print("{:<24} {:>7}  {}\n", p.name, derived.*(p.field), p.meaning);
   return 0;
 }
 
@@ -98,6 +116,10 @@ int main(int argc, char** argv) {
 
   CLI::App* widths = app.add_subcommand("widths", "list the width and microarchitecture parameters");
   widths->add_option("--set", widths_options.settings, "NAME=VALUE, as for run");
+  std::string sv_path;
+  widths->add_option("--sv", sv_path,
+                     "write the RTL's cd_widths.svh (parameters, derived widths, flags, word "
+                     "layout) to this file, or - for stdout");
 
   CLI::App* regress = cdsim::rtl::add_regress_command(app);
   SweepOptions sweep_options;
@@ -116,7 +138,7 @@ int main(int argc, char** argv) {
   }
   try {
     if (*bench) return bench_command(bench_options, bench_seconds);
-    if (*widths) return widths_command(widths_options);
+    if (*widths) return widths_command(widths_options, sv_path);
     if (*regress) return cdsim::rtl::run_regress_command();
     if (*sweep) return run_sweep_command(sweep_options);
     if (*render) return run_render_command(render_options);

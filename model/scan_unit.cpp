@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "column_walker.hpp"
+#include "derived_widths.hpp"
 #include "correction_adder.hpp"
 #include "affine_datapath.hpp"
 #include "divide_datapath.hpp"
@@ -17,7 +18,8 @@ ScanUnit::ScanUnit(const Design& design, const Widths& widths, int viewport_widt
       widths_(widths),
       viewport_width_(viewport_width),
       viewport_height_(viewport_height),
-      table_(widths.table_depth * design.density) {}
+      table_(widths.table_depth * design.density),
+      setup_cycles_(derive(widths).setup_cycles) {}
 
 TriangleRecord ScanUnit::run(const UnitTriangle& triangle, std::vector<Fragment>* fragments) {
   const Setup setup = setup_engine(triangle, design_, widths_, viewport_width_, viewport_height_);
@@ -30,7 +32,7 @@ TriangleRecord ScanUnit::run(const UnitTriangle& triangle, std::vector<Fragment>
       case Design::Kind::Affine: record = run_affine(triangle, setup, fragments); break;
     }
   }
-  record.setup_cycles = widths_.setup_cycles;
+  record.setup_cycles = setup_cycles_;
   record.cycles = record.setup_cycles + record.fill_cycles + record.walk_cycles;
   record.x_major = setup.x_major;
   record.flags |= setup.flags;

@@ -51,6 +51,7 @@ class ScanUnit {
   Widths widths_;
   int viewport_width_, viewport_height_;
   ScanlineTable table_;
+  int64_t setup_cycles_;  // from the setup engine's structure (derived_widths.cpp)
 };
 
 }  // namespace cdsim

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstring>
 
+#include "derived_widths.hpp"
+
 namespace cdsim {
 
 using fx::Wide;
@@ -41,6 +43,18 @@ Setup setup_engine(const UnitTriangle& t, const Design& design, const Widths& w,
   s.box = bounding_box(t, w.subpixel_bits, viewport_width, viewport_height);
   if (s.edges.det == 0 || s.box.empty()) return s;
   s.empty = false;
+  // Every intermediate is checked against the width the RTL gives it.
+  const DerivedWidths dw = derive(w);
+  for (const UnitVertex& vertex : t.vertex) {
+    fits_or_throw(vertex.x, dw.coord_bits, "vertex x");
+    fits_or_throw(vertex.y, dw.coord_bits, "vertex y");
+    fits_or_throw(vertex.u, dw.uv_bits, "vertex u");
+    fits_or_throw(vertex.v, dw.uv_bits, "vertex v");
+  }
+  fits_or_throw(s.edges.det, dw.det_bits, "det");
+  s.fill_q_bits = dw.fill_q_bits;
+  s.fill_uv_bits = dw.fill_uv_bits;
+  for (size_t i = 0; i < 3; ++i) fits_or_throw(s.edges.c[i], dw.edge_c_bits, "edge c");
 
   // Per-triangle normalisation of 1/w: align the three mantissas to the largest
   // exponent. The shared exponent itself cancels in u = U/q and is dropped.
@@ -57,6 +71,9 @@ Setup setup_engine(const UnitTriangle& t, const Design& design, const Widths& w,
     if (q[i] == 0) s.flags |= flag::kDepthRange;
     uq[i] = q[i] * t.vertex[i].u;
     vq[i] = q[i] * t.vertex[i].v;
+    fits_unsigned_or_throw(q[i], dw.q_vertex_bits, "vertex q");
+    fits_or_throw(uq[i], dw.attr_uv_bits, "vertex U");
+    fits_or_throw(vq[i], dw.attr_uv_bits, "vertex V");
   }
 
   // Plane equations scaled by det (which cancels in every ratio we need), with
@@ -73,13 +90,21 @@ Setup setup_engine(const UnitTriangle& t, const Design& design, const Widths& w,
   struct Exact {
     Wide at_ref, per_x, per_y;
   };
-  const auto plane = [&](const std::array<Wide, 3>& a) {
+  fits_or_throw(ref_x, dw.diff_bits, "reference x offset");
+  fits_or_throw(ref_y, dw.diff_bits, "reference y offset");
+  const auto plane = [&](const std::array<Wide, 3>& a, int coef_bits, int ref_bits) {
     const Wide da1 = a[1] - a[0], da2 = a[2] - a[0];
     const Wide coef_x = sign * (da1 * dy2 - da2 * dy1);
     const Wide coef_y = sign * (da2 * dx1 - da1 * dx2);
-    return Exact{sign * a[0] * det + coef_x * ref_x + coef_y * ref_y, coef_x * (Wide{1} << sp), coef_y * (Wide{1} << sp)};
+    fits_or_throw(coef_x, coef_bits, "plane coefficient x");
+    fits_or_throw(coef_y, coef_bits, "plane coefficient y");
+    const Wide at_ref = sign * a[0] * det + coef_x * ref_x + coef_y * ref_y;
+    fits_or_throw(at_ref, ref_bits, "plane value at the reference");
+    return Exact{at_ref, coef_x * (Wide{1} << sp), coef_y * (Wide{1} << sp)};
   };
-  const Exact eq = plane(q), eu = plane(uq), ev = plane(vq);
+  const Exact eq = plane(q, dw.coef_q_bits, dw.exact_ref_q_bits);
+  const Exact eu = plane(uq, dw.coef_uv_bits, dw.exact_ref_uv_bits);
+  const Exact ev = plane(vq, dw.coef_uv_bits, dw.exact_ref_uv_bits);
 
   // Orientation: the constant-depth lines run along the axis in which q changes least.
   const Wide abs_qx = eq.per_x < 0 ? -eq.per_x : eq.per_x;
@@ -94,23 +119,31 @@ Setup setup_engine(const UnitTriangle& t, const Design& design, const Widths& w,
   // Shared shift: q * |det| peaks at a vertex, and after the shift it fits plane_bits.
   Wide q_peak = 0;
   for (size_t i = 0; i < 3; ++i) q_peak = std::max(q_peak, q[i] * (det < 0 ? -det : det));
+  fits_unsigned_or_throw(q_peak, dw.peak_bits, "q |det|");
+  fits_or_throw(s.g, dw.g_bits, "g");
   s.shift = fx::bit_length(q_peak) - w.plane_bits;
+  fits_or_throw(s.shift, dw.shift_bits, "per-triangle shift");
   const int line_shift = log2_exact(s.density);
-  const auto normalise = [&](const Exact& e) {
+  const auto normalise = [&](const Exact& e, int ref_bits, int step_bits) {
     Plane p;
     p.at_ref = fx::shift_round(e.at_ref, s.shift, fx::Round::Nearest);
     p.per_major = fx::shift_round(major(e), s.shift, fx::Round::Nearest);
     p.per_minor = fx::shift_round(minor(e), s.shift, fx::Round::Nearest);
     p.per_line = fx::shift_round(minor(e), s.shift + line_shift, fx::Round::Nearest);
+    fits_or_throw(p.at_ref, ref_bits, "normalised plane value at the reference");
+    fits_or_throw(p.per_major, step_bits, "normalised plane step (major)");
+    fits_or_throw(p.per_minor, step_bits, "normalised plane step (minor)");
     return p;
   };
-  s.q = normalise(eq);
-  s.u = normalise(eu);
-  s.v = normalise(ev);
+  s.q = normalise(eq, dw.plane_ref_q_bits, dw.plane_step_q_bits);
+  s.u = normalise(eu, dw.plane_ref_uv_bits, dw.plane_step_uv_bits);
+  s.v = normalise(ev, dw.plane_ref_uv_bits, dw.plane_step_uv_bits);
   s.step_u = fx::shift_round(major(eu) * (Wide{1} << gf) + Wide{s.g} * minor(eu), s.shift + gf,
                              fx::Round::Nearest);
   s.step_v = fx::shift_round(major(ev) * (Wide{1} << gf) + Wide{s.g} * minor(ev), s.shift + gf,
                              fx::Round::Nearest);
+  fits_or_throw(s.step_u, dw.step_uv_bits, "numerator of S.u");
+  fits_or_throw(s.step_v, dw.step_uv_bits, "numerator of S.v");
 
   // Walk geometry along the chosen axes.
   s.major_lo = s.x_major ? s.box.x_lo : s.box.y_lo;
@@ -129,6 +162,7 @@ Setup setup_engine(const UnitTriangle& t, const Design& design, const Widths& w,
     const Wide vertex_major = (s.x_major ? v[i].x - v[0].x : v[i].y - v[0].y) - ref_major;
     const Wide vertex_minor = (s.x_major ? v[i].y - v[0].y : v[i].x - v[0].x) - ref_minor;
     const Wide kappa = s.density * (vertex_minor * (Wide{1} << gf) - Wide{s.g} * vertex_major);
+    fits_or_throw(kappa, dw.kappa_bits, "kappa");
     kappa_lo = i == 0 ? kappa : std::min(kappa_lo, kappa);
     kappa_hi = i == 0 ? kappa : std::max(kappa_hi, kappa);
   }
@@ -143,6 +177,10 @@ Setup setup_engine(const UnitTriangle& t, const Design& design, const Widths& w,
   line_lo = std::max(line_lo, -std::max(round_first, round_last));
   line_hi = std::min(line_hi, Wide{s.density} * (s.minor_hi - s.minor_lo) -
                                   std::min(round_first, round_last));
+  if (line_lo <= line_hi) {
+    fits_or_throw(line_lo, dw.line_bits, "first pixel line");
+    fits_or_throw(line_hi, dw.line_bits, "last pixel line");
+  }
   s.pixel_line_lo = static_cast<int64_t>(line_lo);
   s.pixel_line_hi = static_cast<int64_t>(line_hi);
   return s;
@@ -166,6 +204,9 @@ TableEntry fill_line(const Setup& s, int64_t line, const Widths& w) {
   const Wide q = s.q.at_ref + Wide{line} * s.q.per_line;
   const Wide u = s.u.at_ref + Wide{line} * s.u.per_line;
   const Wide v = s.v.at_ref + Wide{line} * s.v.per_line;
+  fits_or_throw(q, s.fill_q_bits, "q on a table line");
+  fits_or_throw(u, s.fill_uv_bits, "U on a table line");
+  fits_or_throw(v, s.fill_uv_bits, "V on a table line");
   const Reciprocal r = reciprocal(q, w.recip_bits);
   // U * (1/q) carries uv_in_frac fraction bits of texels, plus the reciprocal's.
   const int product_frac = w.recip_bits + r.exponent + w.uv_in_frac;

@@ -40,6 +40,7 @@ struct Setup {
   int64_t pixel_line_lo = 0, pixel_line_hi = -1;  // lines covered pixels can use
   EdgeSet edges;
   uint32_t flags = 0;
+  int fill_q_bits = 127, fill_uv_bits = 127;  // the fill accumulators' widths (derived_widths)
 };
 
 Setup setup_engine(const UnitTriangle& triangle, const Design& design, const Widths& widths,

@@ -10,30 +10,19 @@
 // recip_latency) + per band (columns) + pixels. A PIXEL cycle whose fragment
 // is not taken is a stall and is counted too.
 `include "cd_widths.svh"
+`default_nettype none
 
 module cd_scan_unit #(
-  parameter int SubpixelBits = `CD_SUBPIXEL_BITS,
-  parameter int UvInFrac     = `CD_UV_IN_FRAC,
-  parameter int QBits        = `CD_Q_BITS,
-  parameter int PlaneBits    = `CD_PLANE_BITS,
-  parameter int GFrac        = `CD_G_FRAC,
-  parameter int RecipBits    = `CD_RECIP_BITS,
-  parameter int TInt         = `CD_T_INT,
-  parameter int TFrac        = `CD_T_FRAC,
-  parameter int SInt         = `CD_S_INT,
-  parameter int SFrac        = `CD_S_FRAC,
-  parameter int DFrac        = `CD_D_FRAC,
-  parameter int OutInt       = `CD_OUT_INT,
-  parameter int OutFrac      = `CD_OUT_FRAC,
-  parameter int TableDepth   = `CD_TABLE_DEPTH,
-  parameter int RecipLatency = `CD_RECIP_LATENCY,
-  parameter int SetupCycles  = `CD_SETUP_CYCLES
+  // The table holds TableDepth << MaxDensityLog2 lines: the densest design the
+  // unit serves (2 for cd-dense4; 0 when only m = 1 designs run on it).
+  parameter int MaxDensityLog2 = 2
 ) (
   input  logic        clk_i,
   input  logic        rst_ni,
 
   // Triangle: per vertex x, y (signed, SubpixelBits fraction bits), q = 1/w
-  // (binary32 bits), u, v (signed texels, UvInFrac fraction bits).
+  // (binary32 bits), u, v (signed texels, UvInFrac fraction bits), each
+  // sign-extended to 32 bits.
   input  logic        tri_valid_i,
   output logic        tri_ready_o,
   input  logic [31:0] tri_x0_i,
@@ -51,9 +40,11 @@ module cd_scan_unit #(
   input  logic [31:0] tri_q2_i,
   input  logic [31:0] tri_u2_i,
   input  logic [31:0] tri_v2_i,
+  /* verilator lint_off UNUSEDSIGNAL */  // 1 .. 8192: bits 15:14 are always 0
   input  logic [15:0] viewport_width_i,
   input  logic [15:0] viewport_height_i,
-  input  logic [1:0]  density_log2_i,   // m = 1, 2, 4
+  /* verilator lint_on UNUSEDSIGNAL */
+  input  logic [1:0]  density_log2_i,     // m = 1, 2, 4
   input  logic        correction_i,
 
   // Fragment: pixel x, y; u, v sign-extended from OutInt.OutFrac; flags.
@@ -75,22 +66,26 @@ module cd_scan_unit #(
   output logic [7:0]  rec_flags_o
 );
 
-  localparam int TBits    = TInt + TFrac;
-  localparam int SBits    = SInt + SFrac;
-  localparam int WordBits = 2 * TBits + 2 * SBits + 2;
-  // A dense-m design uses m times TableDepth lines (docs/microarchitecture.md):
-  // the SRAM is sized for the densest design, m = 4.
-  localparam int MaxDensity = 4;
-  localparam int SramDepth = TableDepth * MaxDensity;
-  localparam int AddrBits = $clog2(SramDepth);
-  localparam int OutBits  = OutInt + OutFrac;
-  localparam logic [7:0] FlagBanded = 8'h08;
-
-  // The setup engine needs a cycle for each of its two stages before the
-  // last setup cycle decides what follows.
-  if (SetupCycles < 3) begin : gen_setup_cycles_check
-    $error("cd_scan_unit needs SetupCycles >= 3");
-  end
+  localparam int TableDepth   = `CD_TABLE_DEPTH;
+  localparam int RecipLatency = `CD_RECIP_LATENCY;
+  localparam int SetupCycles  = `CD_SETUP_CYCLES;
+  localparam int PixelBits    = `CD_PIXEL_BITS;
+  localparam int LineBits     = `CD_LINE_BITS;
+  localparam int GBits        = `CD_G_BITS;
+  localparam int WeightBits   = `CD_WEIGHT_BITS;
+  localparam int WordBits     = `CD_WORD_BITS;
+  localparam int OutBits      = `CD_OUT_BITS;
+  localparam int CountBits    = `CD_CYCLE_COUNT_BITS;
+  localparam int BoundBits    = `CD_EDGE_BOUND_BITS;
+  localparam int StepBits     = `CD_EDGE_STEP_BITS;
+  localparam int SlopeBits    = `CD_EDGE_SLOPE_BITS;
+  localparam int SramDepth    = TableDepth << MaxDensityLog2;
+  localparam int AddrBits     = $clog2(SramDepth);
+  // Lines of a band, and fill cycles: at most SramDepth + RecipLatency.
+  localparam int BandBits     = LineBits + 2;
+  localparam int StepCountBits = $clog2(SramDepth + RecipLatency + 1) + 1 > PixelBits + 1
+                                 ? $clog2(SramDepth + RecipLatency + 1) + 1 : PixelBits + 1;
+  localparam int FlagBanded   = `CD_FLAG_BANDED;
 
   localparam logic [2:0] StIdle   = 3'd0;
   localparam logic [2:0] StSetup  = 3'd1;
@@ -101,39 +96,39 @@ module cd_scan_unit #(
   localparam logic [2:0] StRecord = 3'd6;
 
   logic [2:0]  state_d, state_q;
-  logic [31:0] count_d, count_q;            // setup / fill / scan cycle within the state
+  logic [StepCountBits-1:0] count_d, count_q;   // setup / fill / scan cycle within the state
   logic [1:0]  density_log2_d, density_log2_q;
   logic        correction_d, correction_q;
-  logic signed [63:0] band_lo_d, band_lo_q, band_hi_d, band_hi_q;
-  logic signed [63:0] band_lines_d, band_lines_q;   // filled lines of the band, guards included
-  logic [31:0] offset_d, offset_q;          // column offset o
-  logic [31:0] major_d, major_q;
-  logic [31:0] minor_d, minor_q, last_d, last_q;
-  logic signed [63:0] line_shift_d, line_shift_q;
+  logic signed [LineBits-1:0] band_lo_d, band_lo_q, band_hi_d, band_hi_q;
+  logic signed [BandBits-1:0] band_lines_d, band_lines_q;  // filled lines of the band, guards included
+  logic [PixelBits-1:0] offset_d, offset_q;                 // column offset o
+  logic [PixelBits-1:0] major_d, major_q;
+  logic [PixelBits-1:0] minor_d, minor_q, last_d, last_q;
+  logic signed [LineBits-1:0] line_shift_d, line_shift_q;
   logic signed [1:0]  direction_d, direction_q;
-  logic [31:0] weight_d, weight_q;
-  logic [63:0] cycles_d, cycles_q;
-  logic [31:0] lines_d, lines_q, bands_d, bands_q, pixels_d, pixels_q;
+  logic [WeightBits-1:0] weight_d, weight_q;
+  logic [CountBits-1:0] cycles_d, cycles_q, lines_d, lines_q, bands_d, bands_q, pixels_d, pixels_q;
   logic [7:0]  flags_d, flags_q;
 
   // ---------------------------------------------------------------- blocks
-  logic               setup_empty, setup_x_major;
-  logic signed [63:0] setup_g, pixel_line_lo, pixel_line_hi;
-  logic [31:0]        major_lo, major_count, minor_lo, minor_hi;
-  logic [191:0]       edge_a, edge_b, edge_c;
-  logic [2:0]         edge_threshold;
+  logic               setup_empty, setup_x_major, setup_no_lines;
+  logic signed [GBits-1:0] setup_g;
+  logic signed [LineBits-1:0] pixel_line_lo, pixel_line_hi;
+  logic [PixelBits-1:0] major_lo, minor_lo, minor_hi;
+  logic [PixelBits:0]   major_count;
+  logic [5:0]           edge_kind;
+  logic [3*BoundBits-1:0] edge_bound;
+  logic [3*StepBits-1:0]  edge_rem, edge_step, edge_slope_rem;
+  logic [3*SlopeBits-1:0] edge_slope;
   logic [7:0]         setup_flags;
-  logic               fill_valid;
-  logic signed [63:0] fill_line;
+  logic               fill_valid, fill_last;
   logic [AddrBits-1:0] fill_addr;
   logic               write_valid;
   logic [AddrBits-1:0] write_addr;
   logic [WordBits-1:0] write_entry;
 
   setup_engine #(
-    .SubpixelBits(SubpixelBits), .UvInFrac(UvInFrac), .QBits(QBits), .PlaneBits(PlaneBits),
-    .GFrac(GFrac), .RecipBits(RecipBits), .TInt(TInt), .TFrac(TFrac), .SInt(SInt),
-    .SFrac(SFrac), .TableDepth(SramDepth), .RecipLatency(RecipLatency)
+    .SramDepth(SramDepth)
   ) u_setup_engine (
     .clk_i,
     .rst_ni,
@@ -143,11 +138,12 @@ module cd_scan_unit #(
     .tri_q_i           ({tri_q2_i, tri_q1_i, tri_q0_i}),
     .tri_u_i           ({tri_u2_i, tri_u1_i, tri_u0_i}),
     .tri_v_i           ({tri_v2_i, tri_v1_i, tri_v0_i}),
-    .viewport_width_i,
-    .viewport_height_i,
+    .viewport_width_i  (viewport_width_i[13:0]),
+    .viewport_height_i (viewport_height_i[13:0]),
     .density_log2_i,
-    .stage0_i          (state_q == StSetup && count_q == 32'd0),
-    .stage1_i          (state_q == StSetup && count_q == 32'd1),
+    .correction_i,
+    .setup_i           (state_q == StSetup),
+    .stage_count_i     (8'(count_q)),
     .empty_o           (setup_empty),
     .x_major_o         (setup_x_major),
     .g_o               (setup_g),
@@ -155,42 +151,48 @@ module cd_scan_unit #(
     .major_count_o     (major_count),
     .minor_lo_o        (minor_lo),
     .minor_hi_o        (minor_hi),
+    .no_lines_o        (setup_no_lines),
     .pixel_line_lo_o   (pixel_line_lo),
     .pixel_line_hi_o   (pixel_line_hi),
-    .edge_a_o          (edge_a),
-    .edge_b_o          (edge_b),
-    .edge_c_o          (edge_c),
-    .edge_threshold_o  (edge_threshold),
     .flags_o           (setup_flags),
+    .edge_kind_o       (edge_kind),
+    .edge_bound_o      (edge_bound),
+    .edge_rem_o        (edge_rem),
+    .edge_step_o       (edge_step),
+    .edge_slope_o      (edge_slope),
+    .edge_slope_rem_o  (edge_slope_rem),
     .fill_valid_i      (fill_valid),
-    .fill_line_i       (fill_line),
+    .fill_last_i       (fill_last),
     .fill_addr_i       (fill_addr),
     .write_valid_o     (write_valid),
     .write_addr_o      (write_addr),
     .write_entry_o     (write_entry)
   );
 
-  logic               column_step;
-  logic [31:0]        column_major, column_weight, column_first, column_last;
-  logic signed [63:0] column_line_shift;
+  logic               column_init, column_advance;
+  logic [PixelBits-1:0] column_major, column_first, column_last;
+  logic [WeightBits-1:0] column_weight;
+  logic signed [LineBits-1:0] column_line_shift;
   logic signed [1:0]  column_direction;
   logic               column_has_pixels;
 
-  column_walker #(
-    .SubpixelBits(SubpixelBits), .GFrac(GFrac), .DFrac(DFrac)
-  ) u_column_walker (
-    .step_i            (column_step),
+  column_walker u_column_walker (
+    .clk_i,
+    .rst_ni,
+    .init_i            (column_init),
+    .advance_i         (column_advance),
     .offset_i          (offset_q),
-    .x_major_i         (setup_x_major),
     .g_i               (setup_g),
     .density_log2_i    (density_log2_q),
     .major_lo_i        (major_lo),
     .minor_lo_i        (minor_lo),
     .minor_hi_i        (minor_hi),
-    .edge_a_i          (edge_a),
-    .edge_b_i          (edge_b),
-    .edge_c_i          (edge_c),
-    .edge_threshold_i  (edge_threshold),
+    .edge_kind_i       (edge_kind),
+    .edge_bound_i      (edge_bound),
+    .edge_rem_i        (edge_rem),
+    .edge_step_i       (edge_step),
+    .edge_slope_i      (edge_slope),
+    .edge_slope_rem_i  (edge_slope_rem),
     .band_lo_i         (band_lo_q),
     .band_hi_i         (band_hi_q),
     .major_o           (column_major),
@@ -222,13 +224,10 @@ module cd_scan_unit #(
     .neighbour_entry_o (neighbour_entry)
   );
 
-  logic [OutBits-1:0] frag_u, frag_v;
+  logic signed [OutBits-1:0] frag_u, frag_v;
   logic [7:0]         frag_flags;
 
-  correction_adder #(
-    .TInt(TInt), .TFrac(TFrac), .SInt(SInt), .SFrac(SFrac), .DFrac(DFrac),
-    .OutInt(OutInt), .OutFrac(OutFrac)
-  ) u_correction_adder (
+  correction_adder u_correction_adder (
     .valid_i           (state_q == StPixel),
     .own_entry_i       (own_entry),
     .neighbour_entry_i (neighbour_entry),
@@ -241,8 +240,10 @@ module cd_scan_unit #(
   );
 
   // ---------------------------------------------------------------- control
-  logic signed [63:0] guard, depth, pixel_lines, lines_per_band, next_band_lo, next_band_hi;
-  logic signed [63:0] read_minor, read_line, read_addr;
+  logic signed [BandBits-1:0] guard, depth, pixel_lines, lines_per_band;
+  logic signed [BandBits-1:0] next_band_lo, next_band_hi;
+  logic signed [BandBits-1:0] read_line, read_addr;
+  logic [PixelBits-1:0] read_minor;
   logic               read_minor_valid;
   logic               band_done, last_column;
 
@@ -267,23 +268,24 @@ module cd_scan_unit #(
     pixels_d = pixels_q;
     flags_d = flags_q;
     fill_valid = 1'b0;
-    fill_line = '0;
+    fill_last = 1'b0;
     fill_addr = '0;
-    column_step = 1'b0;
+    column_init = 1'b0;
+    column_advance = 1'b0;
     read_minor_valid = 1'b0;
     read_minor = '0;
     band_done = 1'b0;
 
-    guard = {63'd0, correction_q};
-    pixel_lines = pixel_line_hi - pixel_line_lo + 64'sd1;
-    depth = 64'(TableDepth) <<< density_log2_q;
+    guard = BandBits'($signed({1'b0, correction_q}));
+    pixel_lines = BandBits'(pixel_line_hi) - BandBits'(pixel_line_lo) + BandBits'(1);
+    depth = BandBits'(TableDepth) <<< density_log2_q;
     lines_per_band = pixel_lines + 2 * guard <= depth ? pixel_lines : depth - 2 * guard;
-    next_band_lo = band_hi_q + 64'sd1;
-    last_column = offset_q == major_count - 32'd1;
+    next_band_lo = BandBits'(band_hi_q) + BandBits'(1);
+    last_column = (PixelBits+1)'(offset_q) == major_count - (PixelBits+1)'(1);
 
-    if (state_q != StIdle && state_q != StRecord) cycles_d = cycles_q + 64'd1;
+    if (state_q != StIdle && state_q != StRecord) cycles_d = cycles_q + CountBits'(1);
 
-    case (state_q)
+    unique case (state_q)
       StIdle: begin
         if (tri_valid_i) begin
           state_d = StSetup;
@@ -298,43 +300,43 @@ module cd_scan_unit #(
         end
       end
       StSetup: begin
-        count_d = count_q + 32'd1;
-        if (count_q == 32'(SetupCycles - 1)) begin
+        count_d = count_q + StepCountBits'(1);
+        if (count_q == StepCountBits'(SetupCycles - 1)) begin
           count_d = '0;
           offset_d = '0;
           if (setup_empty) begin
             state_d = StRecord;
           end else begin
             flags_d = setup_flags;
-            if (pixel_line_lo > pixel_line_hi) begin
+            if (setup_no_lines) begin
               state_d = StScan;
             end else begin
               state_d = StFill;
               band_lo_d = pixel_line_lo;
-              band_hi_d = pixel_line_lo + lines_per_band - 64'sd1;
+              band_hi_d = LineBits'(BandBits'(pixel_line_lo) + lines_per_band - BandBits'(1));
               if (band_hi_d > pixel_line_hi) band_hi_d = pixel_line_hi;
-              band_lines_d = band_hi_d - band_lo_d + 64'sd1 + 2 * guard;
-              bands_d = 32'd1;
-              lines_d = 32'(band_lines_d);
+              band_lines_d = BandBits'(band_hi_d) - BandBits'(band_lo_d) + BandBits'(1) + 2 * guard;
+              bands_d = CountBits'(1);
+              lines_d = CountBits'(band_lines_d);
             end
           end
         end
       end
       StFill: begin
-        count_d = count_q + 32'd1;
-        if ($signed({32'd0, count_q}) < band_lines_q) begin
+        count_d = count_q + StepCountBits'(1);
+        if (BandBits'($signed({1'b0, count_q})) < band_lines_q) begin
           fill_valid = 1'b1;
-          fill_line = band_lo_q - guard + $signed({32'd0, count_q});
+          fill_last = BandBits'($signed({1'b0, count_q})) == band_lines_q - BandBits'(1);
           fill_addr = AddrBits'(count_q);
         end
-        if ($signed({32'd0, count_q}) == band_lines_q + 64'(RecipLatency) - 64'sd1) begin
+        if (BandBits'($signed({1'b0, count_q})) == band_lines_q + BandBits'(RecipLatency - 1)) begin
           state_d = StColumn;
           count_d = '0;
           offset_d = '0;
+          column_init = 1'b1;
         end
       end
       StColumn: begin
-        column_step = 1'b1;
         major_d = column_major;
         line_shift_d = column_line_shift;
         direction_d = column_direction;
@@ -344,34 +346,36 @@ module cd_scan_unit #(
         if (column_has_pixels) begin
           state_d = StPixel;
           read_minor_valid = 1'b1;
-          read_minor = $signed({32'd0, column_first});
+          read_minor = column_first;
         end else if (last_column) begin
           band_done = 1'b1;
         end else begin
-          offset_d = offset_q + 32'd1;
+          offset_d = offset_q + PixelBits'(1);
+          column_advance = 1'b1;
         end
       end
       StPixel: begin
         if (frag_ready_i) begin
-          pixels_d = pixels_q + 32'd1;
+          pixels_d = pixels_q + CountBits'(1);
           flags_d = flags_q | frag_flags;
           if (minor_q == last_q) begin
             if (last_column) begin
               band_done = 1'b1;
             end else begin
               state_d = StColumn;
-              offset_d = offset_q + 32'd1;
+              offset_d = offset_q + PixelBits'(1);
+              column_advance = 1'b1;
             end
           end else begin
-            minor_d = minor_q + 32'd1;
+            minor_d = minor_q + PixelBits'(1);
             read_minor_valid = 1'b1;
-            read_minor = $signed({32'd0, minor_q}) + 64'sd1;
+            read_minor = minor_q + PixelBits'(1);
           end
         end
       end
       StScan: begin
-        count_d = count_q + 32'd1;
-        if (count_q == major_count - 32'd1) state_d = StRecord;
+        count_d = count_q + StepCountBits'(1);
+        if ((PixelBits+1)'(count_q) == major_count - (PixelBits+1)'(1)) state_d = StRecord;
       end
       StRecord: begin
         if (rec_ready_i) state_d = StIdle;
@@ -380,34 +384,35 @@ module cd_scan_unit #(
     endcase
 
     // End of a band: the next band, or the record.
-    next_band_hi = next_band_lo + lines_per_band - 64'sd1;
-    if (next_band_hi > pixel_line_hi) next_band_hi = pixel_line_hi;
+    next_band_hi = next_band_lo + lines_per_band - BandBits'(1);
+    if (next_band_hi > BandBits'(pixel_line_hi)) next_band_hi = BandBits'(pixel_line_hi);
     if (band_done) begin
       if (band_hi_q < pixel_line_hi) begin
         state_d = StFill;
         count_d = '0;
-        band_lo_d = next_band_lo;
-        band_hi_d = next_band_hi;
-        band_lines_d = next_band_hi - next_band_lo + 64'sd1 + 2 * guard;
-        bands_d = bands_q + 32'd1;
-        lines_d = lines_q + 32'(band_lines_d);
-        flags_d = flags_d | FlagBanded;
+        band_lo_d = LineBits'(next_band_lo);
+        band_hi_d = LineBits'(next_band_hi);
+        band_lines_d = next_band_hi - next_band_lo + BandBits'(1) + 2 * guard;
+        bands_d = bands_q + CountBits'(1);
+        lines_d = lines_q + CountBits'(band_lines_d);
+        flags_d[FlagBanded] = 1'b1;
       end else begin
         state_d = StRecord;
       end
     end
 
     // Table read for the next pixel: its line, and the neighbour line.
-    read_line = (read_minor - $signed({32'd0, minor_lo})) <<< density_log2_q;
-    read_line = read_line - (state_q == StColumn ? column_line_shift : line_shift_q);
-    read_addr = read_line - (band_lo_q - guard);
+    read_line = (BandBits'($signed({1'b0, read_minor})) - BandBits'($signed({1'b0, minor_lo})))
+                <<< density_log2_q;
+    read_line = read_line - (state_q == StColumn ? BandBits'(column_line_shift) : BandBits'(line_shift_q));
+    read_addr = read_line - (BandBits'(band_lo_q) - guard);
   end
 
   assign read = read_minor_valid;
   assign own_addr = AddrBits'(read_addr);
   assign neighbour_read = read_minor_valid && correction_q &&
                           (state_q == StColumn ? column_direction : direction_q) != 2'sd0;
-  assign neighbour_addr = AddrBits'(read_addr + {{62{direction_d[1]}}, direction_d});
+  assign neighbour_addr = AddrBits'(read_addr + BandBits'(direction_d));
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -457,17 +462,59 @@ module cd_scan_unit #(
   assign tri_ready_o = state_q == StIdle;
 
   assign frag_valid_o = state_q == StPixel;
-  assign frag_x_o = 16'(setup_x_major ? major_q : minor_q);
-  assign frag_y_o = 16'(setup_x_major ? minor_q : major_q);
-  assign frag_u_o = {{(64 - OutBits){frag_u[OutBits-1]}}, frag_u};
-  assign frag_v_o = {{(64 - OutBits){frag_v[OutBits-1]}}, frag_v};
+  assign frag_x_o = setup_x_major ? 16'(major_q) : 16'(minor_q);
+  assign frag_y_o = setup_x_major ? 16'(minor_q) : 16'(major_q);
+  assign frag_u_o = 64'(frag_u);
+  assign frag_v_o = 64'(frag_v);
   assign frag_flags_o = frag_flags;
 
   assign rec_valid_o = state_q == StRecord;
-  assign rec_cycles_o = cycles_q;
-  assign rec_lines_o = lines_q;
-  assign rec_bands_o = bands_q;
-  assign rec_pixels_o = pixels_q;
+  assign rec_cycles_o = 64'(cycles_q);
+  assign rec_lines_o = 32'(lines_q);
+  assign rec_bands_o = 32'(bands_q);
+  assign rec_pixels_o = 32'(pixels_q);
   assign rec_flags_o = flags_q;
 
+`ifndef SYNTHESIS
+  // Handshakes: a fragment or record offered and refused stays unchanged until
+  // taken; table reads stay inside the band's lines.
+  logic frag_stalled_q, rec_stalled_q;
+  logic [15:0] frag_x_held_q, frag_y_held_q;
+  logic [63:0] frag_u_held_q, frag_v_held_q;
+  logic [7:0]  frag_flags_held_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      frag_stalled_q <= 1'b0;
+      rec_stalled_q <= 1'b0;
+    end else begin
+      frag_stalled_q <= frag_valid_o && !frag_ready_i;
+      rec_stalled_q <= rec_valid_o && !rec_ready_i;
+      frag_x_held_q <= frag_x_o;
+      frag_y_held_q <= frag_y_o;
+      frag_u_held_q <= frag_u_o;
+      frag_v_held_q <= frag_v_o;
+      frag_flags_held_q <= frag_flags_o;
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    if (frag_stalled_q) begin
+      assert (frag_valid_o) else $error("cd_scan_unit: frag_valid_o dropped while stalled");
+      assert (frag_x_o == frag_x_held_q && frag_y_o == frag_y_held_q && frag_u_o == frag_u_held_q &&
+              frag_v_o == frag_v_held_q && frag_flags_o == frag_flags_held_q)
+        else $error("cd_scan_unit: fragment changed while stalled");
+    end
+    if (rec_stalled_q) assert (rec_valid_o) else $error("cd_scan_unit: rec_valid_o dropped while stalled");
+    if (read) begin
+      assert (read_addr >= 0 && read_addr < band_lines_q)
+        else $error("cd_scan_unit: table read at %0d outside the band's %0d lines", read_addr, band_lines_q);
+      if (neighbour_read)
+        assert (read_addr + BandBits'(direction_d) >= 0 && read_addr + BandBits'(direction_d) < band_lines_q)
+          else $error("cd_scan_unit: neighbour read outside the band");
+    end
+    if (write_valid) assert (32'(write_addr) < SramDepth) else $error("cd_scan_unit: table write past the end");
+  end
+`endif
+
 endmodule
+
+`default_nettype wire

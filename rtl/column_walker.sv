@@ -1,119 +1,166 @@
-// Column walker: for column offset o (a row, when y-major) the rounded line
-// shift r(o) = round(density g o), the distance t to the line as a direction
-// and a correction weight, and the covered pixels of the column, clipped to the
-// box and to the lines of the current band. Twin of model/column_walker.cpp and
-// of covered_span in model/coverage.cpp. Combinational; its results are
-// evaluated only in the walker's column cycle (step_i).
+// Column walker: for the current column (a row, when y-major) the rounded line
+// shift r(o) = round(m g o), the distance t to the line as a direction and a
+// correction weight, and the covered pixels of the column clipped to the box and
+// to the lines of the current band. Twin of model/column_walker.cpp and of
+// covered_span in model/coverage.cpp, without a divider: m g o and each edge's
+// span end are accumulated from column to column.
+//
+// An edge's span end is floor(N / S) for the edge value N at the column's pixel
+// 0 and S = |free coefficient| 2^subpixel_bits; N grows by fixed 2^subpixel_bits
+// per column, which the setup engine split into floor(. / S) (slope) and a
+// remainder (slope_rem), so a column step is two additions and a compare
+// (Bresenham). Kind 1 (free > 0) bounds the span below at -floor(N / S), kind 2
+// (free < 0) above at floor(N / S); kind 0 (free = 0) keeps floor(N / 2^sp) and
+// empties the column while it is negative.
+//
+// Timing: init_i (the cycle before a band's first column) loads column 0;
+// advance_i moves to the next column at the end of the cycle. The outputs
+// describe the current column and are valid in every cycle after init.
 `include "cd_widths.svh"
+`default_nettype none
 
-module column_walker #(
-  parameter int SubpixelBits = `CD_SUBPIXEL_BITS,
-  parameter int GFrac        = `CD_G_FRAC,
-  parameter int DFrac        = `CD_D_FRAC
-) (
-  input  logic               step_i,
-  input  logic [31:0]        offset_i,
+module column_walker (
+  input  logic                              clk_i,
+  input  logic                              rst_ni,
+  input  logic                              init_i,
+  input  logic                              advance_i,
+  input  logic [`CD_PIXEL_BITS-1:0]         offset_i,
   // From the setup engine.
-  input  logic               x_major_i,
-  input  logic signed [63:0] g_i,
-  input  logic [1:0]         density_log2_i,
-  input  logic [31:0]        major_lo_i,
-  input  logic [31:0]        minor_lo_i,
-  input  logic [31:0]        minor_hi_i,
-  input  logic [191:0]       edge_a_i,
-  input  logic [191:0]       edge_b_i,
-  input  logic [191:0]       edge_c_i,
-  input  logic [2:0]         edge_threshold_i,
+  input  logic signed [`CD_G_BITS-1:0]      g_i,
+  input  logic [1:0]                        density_log2_i,
+  input  logic [`CD_PIXEL_BITS-1:0]         major_lo_i,
+  input  logic [`CD_PIXEL_BITS-1:0]         minor_lo_i,
+  input  logic [`CD_PIXEL_BITS-1:0]         minor_hi_i,
+  input  logic [5:0]                        edge_kind_i,
+  input  logic [3*`CD_EDGE_BOUND_BITS-1:0]  edge_bound_i,
+  input  logic [3*`CD_EDGE_STEP_BITS-1:0]   edge_rem_i,
+  input  logic [3*`CD_EDGE_STEP_BITS-1:0]   edge_step_i,
+  input  logic [3*`CD_EDGE_SLOPE_BITS-1:0]  edge_slope_i,
+  input  logic [3*`CD_EDGE_STEP_BITS-1:0]   edge_slope_rem_i,
   // Lines of the current band.
-  input  logic signed [63:0] band_lo_i,
-  input  logic signed [63:0] band_hi_i,
-  // Column results.
-  output logic [31:0]        major_o,
-  output logic signed [63:0] line_shift_o,
-  output logic signed [1:0]  direction_o,
-  output logic [31:0]        weight_o,
-  output logic [31:0]        first_o,
-  output logic [31:0]        last_o,
-  output logic               has_pixels_o
+  input  logic signed [`CD_LINE_BITS-1:0]   band_lo_i,
+  input  logic signed [`CD_LINE_BITS-1:0]   band_hi_i,
+  // The current column.
+  output logic [`CD_PIXEL_BITS-1:0]         major_o,
+  output logic signed [`CD_LINE_BITS-1:0]   line_shift_o,
+  output logic signed [1:0]                 direction_o,
+  output logic [`CD_WEIGHT_BITS-1:0]        weight_o,
+  output logic [`CD_PIXEL_BITS-1:0]         first_o,
+  output logic [`CD_PIXEL_BITS-1:0]         last_o,
+  output logic                              has_pixels_o
 );
 
-  `include "cd_arith.svh"
+  localparam int GFrac         = `CD_G_FRAC;
+  localparam int DFrac         = `CD_D_FRAC;
+  localparam int PixelBits     = `CD_PIXEL_BITS;
+  localparam int LineBits      = `CD_LINE_BITS;
+  localparam int ExactBits     = `CD_EXACT_SHIFT_BITS;
+  localparam int TDistBits     = `CD_T_DIST_BITS;
+  localparam int WeightBits    = `CD_WEIGHT_BITS;
+  localparam int BoundBits     = `CD_EDGE_BOUND_BITS;
+  localparam int StepBits      = `CD_EDGE_STEP_BITS;
+  localparam int SlopeBits     = `CD_EDGE_SLOPE_BITS;
+  localparam int SpanBits      = BoundBits + 1;
+  // weight = round(|t| 2^-(g_frac - d_frac)), a right shift when g_frac > d_frac.
+  localparam int WeightRight   = GFrac > DFrac ? GFrac - DFrac : 0;
+  localparam int WeightLeft    = DFrac > GFrac ? DFrac - GFrac : 0;
+  localparam logic [TDistBits-1:0] WeightHalf =
+      GFrac > DFrac ? TDistBits'(1) << (WeightRight > 0 ? WeightRight - 1 : 0) : '0;
 
-  function automatic logic signed [127:0] sext64(input logic [63:0] x);
-    sext64 = $signed({{64{x[63]}}, x});
-  endfunction
-
-  logic signed [63:0]  exact, t, fixed_centre, half_px, base, step, need;
-  logic signed [63:0]  fixed_coef, free_coef, span_lo, span_hi, band_first, band_last;
-  logic signed [63:0]  minor_lo, minor_hi;
-  // |t| 2^(d_frac - g_frac) is at most 2^d_frac: the low 32 bits hold it.
-  /* verilator lint_off UNUSEDSIGNAL */
-  logic signed [127:0] weight;
-  /* verilator lint_on UNUSEDSIGNAL */
-  logic                span_empty;
+  // ---------------------------------------------------------------- state
+  logic signed [ExactBits-1:0] exact_d, exact_q;      // m g o, g_frac fraction bits
+  logic signed [BoundBits-1:0] bound_d [3];
+  logic signed [BoundBits-1:0] bound_q [3];
+  logic [StepBits-1:0]         rem_d [3];
+  logic [StepBits-1:0]         rem_q [3];
+  logic [StepBits:0]           rem_sum;
 
   always_comb begin
-    major_o = '0;
-    line_shift_o = '0;
-    direction_o = '0;
-    weight_o = '0;
-    first_o = '0;
-    last_o = '0;
-    has_pixels_o = 1'b0;
-    {exact, t, fixed_centre, half_px, base, step, need} = '0;
-    {fixed_coef, free_coef, span_lo, span_hi, band_first, band_last} = '0;
-    {minor_lo, minor_hi} = '0;
-    weight = '0;
-    span_empty = 1'b0;
-    if (step_i) begin
-      major_o = major_lo_i + offset_i;
-      // density g o in g_frac fraction bits; r(o) rounds it, ties toward +inf.
-      exact = (g_i * $signed({32'd0, offset_i})) <<< density_log2_i;
-      line_shift_o = (exact + (64'sd1 <<< (GFrac - 1))) >>> GFrac;
-      t = (line_shift_o <<< GFrac) - exact;
-      direction_o = t > 0 ? 2'sd1 : (t < 0 ? -2'sd1 : 2'sd0);
-      weight = cd_shift_round(sext64(t < 0 ? -t : t), 32'(GFrac - DFrac), 1'b1);
-      weight_o = weight[31:0];
-
-      // Covered span by the three edge functions with the top-left rule.
-      half_px = 64'sd1 <<< (SubpixelBits - 1);
-      fixed_centre = ($signed({32'd0, major_o}) <<< SubpixelBits) + half_px;
-      span_lo = -(64'sd1 <<< 61);
-      span_hi = (64'sd1 <<< 61) - 64'sd1;
+    exact_d = exact_q;
+    bound_d = bound_q;
+    rem_d = rem_q;
+    rem_sum = '0;
+    if (init_i) begin
+      exact_d = '0;
       for (int i = 0; i < 3; i++) begin
-        fixed_coef = x_major_i ? edge_a_i[64*i +: 64] : edge_b_i[64*i +: 64];
-        free_coef = x_major_i ? edge_b_i[64*i +: 64] : edge_a_i[64*i +: 64];
-        base = fixed_coef * fixed_centre + free_coef * half_px + edge_c_i[64*i +: 64];
-        step = free_coef <<< SubpixelBits;
-        need = {63'd0, edge_threshold_i[i]} - base;
-        if (step > 0) begin
-          // ceil(need / step) = -floor(-need / step)
-          band_first = 64'(-cd_floor_div(-sext64(need), sext64(step)));
-          if (band_first > span_lo) span_lo = band_first;
-        end else if (step < 0) begin
-          band_last = 64'(cd_floor_div(-sext64(need), -sext64(step)));
-          if (band_last < span_hi) span_hi = band_last;
-        end else if (need > 0) begin
-          span_empty = 1'b1;
+        bound_d[i] = edge_bound_i[BoundBits*i +: BoundBits];
+        rem_d[i] = edge_rem_i[StepBits*i +: StepBits];
+      end
+    end else if (advance_i) begin
+      exact_d = exact_q + (ExactBits'(g_i) <<< density_log2_i);
+      for (int i = 0; i < 3; i++) begin
+        rem_sum = (StepBits+1)'(rem_q[i]) + (StepBits+1)'(edge_slope_rem_i[StepBits*i +: StepBits]);
+        bound_d[i] = bound_q[i] + BoundBits'($signed(edge_slope_i[SlopeBits*i +: SlopeBits]));
+        if (rem_sum >= (StepBits+1)'(edge_step_i[StepBits*i +: StepBits])) begin
+          rem_sum = rem_sum - (StepBits+1)'(edge_step_i[StepBits*i +: StepBits]);
+          bound_d[i] = bound_d[i] + BoundBits'(1);
         end
+        rem_d[i] = StepBits'(rem_sum);
       end
-      if (span_empty) begin
-        span_lo = '0;
-        span_hi = -64'sd1;
-      end
-      minor_lo = $signed({32'd0, minor_lo_i});
-      minor_hi = $signed({32'd0, minor_hi_i});
-      if (minor_lo > span_lo) span_lo = minor_lo;
-      if (minor_hi < span_hi) span_hi = minor_hi;
-      // Pixels whose line (density (minor - minor_lo) - r) lies in the band.
-      band_first = minor_lo - ((-band_lo_i - line_shift_o) >>> density_log2_i);
-      band_last = minor_lo + ((band_hi_i + line_shift_o) >>> density_log2_i);
-      if (band_first > span_lo) span_lo = band_first;
-      if (band_last < span_hi) span_hi = band_last;
-      has_pixels_o = span_lo <= span_hi;
-      first_o = span_lo[31:0];
-      last_o = span_hi[31:0];
     end
   end
 
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      exact_q <= '0;
+      for (int i = 0; i < 3; i++) begin
+        bound_q[i] <= '0;
+        rem_q[i] <= '0;
+      end
+    end else begin
+      exact_q <= exact_d;
+      bound_q <= bound_d;
+      rem_q <= rem_d;
+    end
+  end
+
+  // ---------------------------------------------------------------- column
+  logic signed [ExactBits-1:0] rounded;
+  logic signed [TDistBits-1:0] t;
+  logic [TDistBits-1:0]        t_abs;
+  logic signed [SpanBits-1:0]  span_lo, span_hi, bound;
+  logic signed [LineBits:0]    band_first, band_last;
+  logic                        span_empty;
+  localparam int WeightWideBits = TDistBits + WeightLeft + 1;
+  /* verilator lint_off UNUSEDSIGNAL */  // the weight is at most 2^(d_frac - 1)
+  logic [WeightWideBits-1:0]   weight_wide;
+  /* verilator lint_on UNUSEDSIGNAL */
+
+  always_comb begin
+    major_o = major_lo_i + offset_i;
+    // r(o) rounds m g o, ties toward +inf; the pixel lies t below its line.
+    rounded = (exact_q + ExactBits'(1 <<< (GFrac - 1))) >>> GFrac;
+    line_shift_o = LineBits'(rounded);
+    t = TDistBits'((rounded <<< GFrac) - exact_q);
+    direction_o = t > 0 ? 2'sd1 : (t < 0 ? -2'sd1 : 2'sd0);
+    t_abs = t < 0 ? TDistBits'(-t) : TDistBits'(t);
+    weight_wide = ((WeightWideBits'(t_abs) + WeightWideBits'(WeightHalf)) >> WeightRight) << WeightLeft;
+    weight_o = WeightBits'(weight_wide);
+
+    // The span: every edge's bound, the box, and the band's lines
+    // (line = m (minor - minor_lo) - r lies in [band_lo, band_hi]).
+    span_lo = SpanBits'($signed({1'b0, minor_lo_i}));
+    span_hi = SpanBits'($signed({1'b0, minor_hi_i}));
+    span_empty = 1'b0;
+    for (int i = 0; i < 3; i++) begin
+      bound = SpanBits'(bound_q[i]);
+      unique case (edge_kind_i[2*i +: 2])
+        2'd1: if (-bound > span_lo) span_lo = -bound;
+        2'd2: if (bound < span_hi) span_hi = bound;
+        default: if (bound < 0) span_empty = 1'b1;
+      endcase
+    end
+    band_first = (LineBits+1)'($signed({1'b0, minor_lo_i})) -
+                 ((-(LineBits+1)'(band_lo_i) - (LineBits+1)'(line_shift_o)) >>> density_log2_i);
+    band_last = (LineBits+1)'($signed({1'b0, minor_lo_i})) +
+                (((LineBits+1)'(band_hi_i) + (LineBits+1)'(line_shift_o)) >>> density_log2_i);
+    if (SpanBits'(band_first) > span_lo) span_lo = SpanBits'(band_first);
+    if (SpanBits'(band_last) < span_hi) span_hi = SpanBits'(band_last);
+    has_pixels_o = !span_empty && span_lo <= span_hi;
+    first_o = PixelBits'(span_lo);
+    last_o = PixelBits'(span_hi);
+  end
+
 endmodule
+
+`default_nettype wire

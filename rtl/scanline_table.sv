@@ -5,6 +5,7 @@
 // banks in the same cycle. Reads are synchronous: data appears the cycle after
 // the address. Writes (the fill) and reads (the walk) never share a cycle.
 `include "cd_widths.svh"
+`default_nettype none
 
 module scanline_table #(
   parameter int Depth    = `CD_TABLE_DEPTH,
@@ -79,3 +80,4 @@ module scanline_table #(
   assign neighbour_entry_o = own_is_odd_q ? even_data_q : odd_data_q;
 
 endmodule
+`default_nettype wire

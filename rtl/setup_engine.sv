@@ -1,472 +1,716 @@
 // Setup engine: plane equations, orientation, slope g, per-triangle
-// normalisation, line range (two setup stages), and the per-line table fill
-// (one reciprocal and four multiplies per line, RecipLatency cycles deep).
-// Twin of model/setup_engine.cpp; every value follows its integer arithmetic
-// exactly. The arithmetic is behavioural (exact 128-bit products, a divider
-// for g and for the reciprocal); only the cycle at which each result appears
-// is architectural. Heavy logic sits behind its stage enable, which also keeps
-// the Verilated model fast: it is evaluated only in the cycle that uses it.
+// normalisation, line range and the column walker's edge trackers, then the
+// per-line table fill (one reciprocal and four multiplies per line). Twin of
+// model/setup_engine.cpp; every value follows its integer arithmetic exactly,
+// every signal has the width derived for it in model/derived_widths.cpp.
+//
+// Timing (docs/rtl.md, "Setup engine"): stage_count_i counts the setup cycles
+// 0 .. SetupCycles-1 after the triangle is loaded.
+//   0        stage A: edges, det, box, q normalisation, U = u q, V = v q
+//   1        stage B: plane coefficients, q |det|
+//   2        stage C: planes at the reference, orientation, shift; the serial
+//            dividers start (g, and per edge its first span end and its step)
+//   2 + Div  stage D: divider results, normalised planes, S numerators, line
+//            range, edge trackers
+//   3 + Div  stage E: q, U, V on the first line of the first band
+// The fill issues one line per fill_valid_i cycle into the reciprocal
+// pipeline; RecipLatency cycles later its table word appears on write_*_o.
 `include "cd_widths.svh"
+`default_nettype none
 
 module setup_engine #(
-  parameter int SubpixelBits = `CD_SUBPIXEL_BITS,
-  parameter int UvInFrac     = `CD_UV_IN_FRAC,
-  parameter int QBits        = `CD_Q_BITS,
-  parameter int PlaneBits    = `CD_PLANE_BITS,
-  parameter int GFrac        = `CD_G_FRAC,
-  parameter int RecipBits    = `CD_RECIP_BITS,
-  parameter int TInt         = `CD_T_INT,
-  parameter int TFrac        = `CD_T_FRAC,
-  parameter int SInt         = `CD_S_INT,
-  parameter int SFrac        = `CD_S_FRAC,
-  parameter int TableDepth   = `CD_TABLE_DEPTH,
-  parameter int RecipLatency = `CD_RECIP_LATENCY,
-  localparam int TBits       = TInt + TFrac,
-  localparam int SBits       = SInt + SFrac,
-  localparam int WordBits    = 2 * TBits + 2 * SBits + 2,
-  localparam int AddrBits    = $clog2(TableDepth)
+  parameter int SramDepth = `CD_TABLE_DEPTH,
+  localparam int AddrBits = $clog2(SramDepth)
 ) (
-  input  logic                      clk_i,
-  input  logic                      rst_ni,
-  // Triangle, captured on load_i (x, y, u, v signed; q is binary32 1/w).
-  input  logic                      load_i,
-  input  logic [95:0]               tri_x_i,
-  input  logic [95:0]               tri_y_i,
-  input  logic [95:0]               tri_q_i,
-  input  logic [95:0]               tri_u_i,
-  input  logic [95:0]               tri_v_i,
-  input  logic [15:0]               viewport_width_i,
-  input  logic [15:0]               viewport_height_i,
-  input  logic [1:0]                density_log2_i,
-  // Setup stages: stage 0 (planes, orientation, g, shift), then stage 1
-  // (normalisation, line range). Results are valid from the cycle after stage 1.
-  input  logic                      stage0_i,
-  input  logic                      stage1_i,
-  output logic                      empty_o,
-  output logic                      x_major_o,
-  output logic signed [63:0]        g_o,
-  output logic [31:0]               major_lo_o,
-  output logic [31:0]               major_count_o,
-  output logic [31:0]               minor_lo_o,
-  output logic [31:0]               minor_hi_o,
-  output logic signed [63:0]        pixel_line_lo_o,
-  output logic signed [63:0]        pixel_line_hi_o,
-  output logic [191:0]              edge_a_o,
-  output logic [191:0]              edge_b_o,
-  output logic [191:0]              edge_c_o,
-  output logic [2:0]                edge_threshold_o,
-  output logic [7:0]                flags_o,
-  // Table fill: line fill_line_i enters the reciprocal pipeline and leaves as a
-  // table write to fill_addr_i RecipLatency cycles later.
-  input  logic                      fill_valid_i,
-  input  logic signed [63:0]        fill_line_i,
-  input  logic [AddrBits-1:0]       fill_addr_i,
-  output logic                      write_valid_o,
-  output logic [AddrBits-1:0]       write_addr_o,
-  output logic [WordBits-1:0]       write_entry_o
+  input  logic                       clk_i,
+  input  logic                       rst_ni,
+  // Triangle, captured on load_i: vertex n in bits 32n +: 32 (x, y, u, v are
+  // sign-extended; q is binary32 1/w).
+  input  logic                       load_i,
+  input  logic [95:0]                tri_x_i,
+  input  logic [95:0]                tri_y_i,
+  input  logic [95:0]                tri_q_i,
+  input  logic [95:0]                tri_u_i,
+  input  logic [95:0]                tri_v_i,
+  input  logic [13:0]                viewport_width_i,
+  input  logic [13:0]                viewport_height_i,
+  input  logic [1:0]                 density_log2_i,
+  input  logic                       correction_i,
+  input  logic                       setup_i,
+  input  logic [7:0]                 stage_count_i,
+  // Results, valid from stage E on.
+  output logic                       empty_o,
+  output logic                       x_major_o,
+  output logic signed [`CD_G_BITS-1:0] g_o,
+  output logic [`CD_PIXEL_BITS-1:0]  major_lo_o,
+  output logic [`CD_PIXEL_BITS:0]    major_count_o,
+  output logic [`CD_PIXEL_BITS-1:0]  minor_lo_o,
+  output logic [`CD_PIXEL_BITS-1:0]  minor_hi_o,
+  output logic                       no_lines_o,
+  output logic signed [`CD_LINE_BITS-1:0] pixel_line_lo_o,
+  output logic signed [`CD_LINE_BITS-1:0] pixel_line_hi_o,
+  output logic [7:0]                 flags_o,
+  // Edge trackers for the column walker, edge i in bits i*W +: W.
+  output logic [5:0]                 edge_kind_o,    // 2 bits per edge: 0 none, 1 lower, 2 upper
+  output logic [3*`CD_EDGE_BOUND_BITS-1:0] edge_bound_o,
+  output logic [3*`CD_EDGE_STEP_BITS-1:0]  edge_rem_o,
+  output logic [3*`CD_EDGE_STEP_BITS-1:0]  edge_step_o,
+  output logic [3*`CD_EDGE_SLOPE_BITS-1:0] edge_slope_o,
+  output logic [3*`CD_EDGE_STEP_BITS-1:0]  edge_slope_rem_o,
+  // Fill: one line per cycle; fill_last_i marks the band's last line.
+  input  logic                       fill_valid_i,
+  input  logic                       fill_last_i,
+  input  logic [AddrBits-1:0]        fill_addr_i,
+  output logic                       write_valid_o,
+  output logic [AddrBits-1:0]        write_addr_o,
+  output logic [`CD_WORD_BITS-1:0]   write_entry_o
 );
 
-  `include "cd_arith.svh"
+  localparam int SubpixelBits = `CD_SUBPIXEL_BITS;
+  localparam int UvInFrac     = `CD_UV_IN_FRAC;
+  localparam int QBits        = `CD_Q_BITS;
+  localparam int PlaneBits    = `CD_PLANE_BITS;
+  localparam int GFrac        = `CD_G_FRAC;
+  localparam int RecipBits    = `CD_RECIP_BITS;
+  localparam int TFrac        = `CD_T_FRAC;
+  localparam int SFrac        = `CD_S_FRAC;
+  localparam int CoordBits    = `CD_COORD_BITS;
+  localparam int UvBits       = `CD_UV_BITS;
+  localparam int DiffBits     = `CD_DIFF_BITS;
+  localparam int DetBits      = `CD_DET_BITS;
+  localparam int EdgeCBits    = `CD_EDGE_C_BITS;
+  localparam int PixelBits    = `CD_PIXEL_BITS;
+  localparam int QVertexBits  = `CD_Q_VERTEX_BITS;
+  localparam int AttrQBits    = `CD_ATTR_Q_BITS;
+  localparam int AttrUvBits   = `CD_ATTR_UV_BITS;
+  localparam int CoefQBits    = `CD_COEF_Q_BITS;
+  localparam int CoefUvBits   = `CD_COEF_UV_BITS;
+  localparam int ExactRefQBits  = `CD_EXACT_REF_Q_BITS;
+  localparam int ExactRefUvBits = `CD_EXACT_REF_UV_BITS;
+  localparam int PeakBits     = `CD_PEAK_BITS;
+  localparam int ShiftBits    = `CD_SHIFT_BITS;
+  localparam int PlaneRefQBits  = `CD_PLANE_REF_Q_BITS;
+  localparam int PlaneRefUvBits = `CD_PLANE_REF_UV_BITS;
+  localparam int PlaneStepQBits  = `CD_PLANE_STEP_Q_BITS;
+  localparam int PlaneStepUvBits = `CD_PLANE_STEP_UV_BITS;
+  localparam int StepUvBits   = `CD_STEP_UV_BITS;
+  localparam int GBits        = `CD_G_BITS;
+  localparam int KappaBits    = `CD_KAPPA_BITS;
+  localparam int LineBits     = `CD_LINE_BITS;
+  localparam int EdgeNBits    = `CD_EDGE_N_BITS;
+  localparam int EdgeStepBits = `CD_EDGE_STEP_BITS;
+  localparam int EdgeBoundBits = `CD_EDGE_BOUND_BITS;
+  localparam int EdgeSlopeBits = `CD_EDGE_SLOPE_BITS;
+  localparam int FillQBits    = `CD_FILL_Q_BITS;
+  localparam int FillUvBits   = `CD_FILL_UV_BITS;
+  localparam int ExponentBits = `CD_EXPONENT_BITS;
+  localparam int TBits        = `CD_T_BITS;
+  localparam int SBits        = `CD_S_BITS;
+  localparam int DivCycles    = `CD_DIV_CYCLES;
+  localparam int GDivQuoBits  = `CD_G_DIV_QUOTIENT_BITS;
+  localparam int BoundDivQuoBits = `CD_BOUND_DIV_QUOTIENT_BITS;
+  localparam int SlopeDivQuoBits = `CD_SLOPE_DIV_QUOTIENT_BITS;
+  localparam int DivBitsPerCycle = `CD_DIV_BITS_PER_CYCLE;
 
-  localparam int W = 128;
-  localparam logic [7:0] FlagDepthRange     = 8'h04;
+  // Exact values before the per-triangle shift.
+  localparam int AxisQBits    = CoefQBits + SubpixelBits;   // q per pixel (coef 2^sp)
+  localparam int AxisUvBits   = CoefUvBits + SubpixelBits;
+  localparam int StepNumBits  = AxisUvBits + GFrac + 2;      // U_major 2^gf + g U_minor
+  localparam int GDivNumBits  = CoefQBits + GFrac + 1;       // |2 N' + D'|
+  localparam int GDivDenBits  = CoefQBits;                   // 2 |q_minor|
+  localparam int FreeBits     = DiffBits - 1;                // |free coefficient|
+  localparam int BoundNumBits = EdgeNBits - SubpixelBits;    // |N0 >> sp|
+  localparam int LineRangeBits = KappaBits - SubpixelBits - GFrac + 3;
+  localparam int ProductTBits = FillUvBits + RecipBits + 2;  // U_k R
+  localparam int ProductSBits = StepUvBits + RecipBits + 2;  // SU R
+  localparam int ProductShiftBits = 10;  // e + rb + uv_in_frac - t_frac lies in (-64, 256)
+  localparam int MaxTLeft = TFrac > RecipBits + UvInFrac ? TFrac - RecipBits - UvInFrac : 0;
+  localparam int MaxSLeft = SFrac > RecipBits + UvInFrac ? SFrac - RecipBits - UvInFrac : 0;
+  localparam int MaxPlaneLeft = PlaneBits + 2;
 
-  function automatic logic signed [127:0] sext32(input logic [31:0] x);
-    sext32 = $signed({{96{x[31]}}, x});
-  endfunction
-
-  function automatic logic signed [127:0] sext64(input logic [63:0] x);
-    sext64 = $signed({{64{x[63]}}, x});
-  endfunction
-
-  function automatic logic signed [127:0] abs_wide(input logic signed [127:0] x);
-    abs_wide = x < 128'sd0 ? -x : x;
-  endfunction
+  localparam int FlagDepthRange = `CD_FLAG_DEPTH_RANGE;
 
   // ---------------------------------------------------------------- triangle
-  logic [95:0] tri_x_q, tri_y_q, tri_q_q, tri_u_q, tri_v_q;
-  logic [15:0] viewport_width_q, viewport_height_q;
-  logic [1:0]  density_log2_q;
+  logic signed [CoordBits-1:0] x_q [3];
+  logic signed [CoordBits-1:0] y_q [3];
+  logic signed [UvBits-1:0]    u_q [3];
+  logic signed [UvBits-1:0]    v_q [3];
+  logic [31:0]                 qf_q [3];
+  logic [13:0]                 viewport_width_q, viewport_height_q;
+  logic [1:0]                  density_log2_q;
+  logic                        guard_q;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      tri_x_q <= '0;
-      tri_y_q <= '0;
-      tri_q_q <= '0;
-      tri_u_q <= '0;
-      tri_v_q <= '0;
+      for (int i = 0; i < 3; i++) begin
+        x_q[i] <= '0;
+        y_q[i] <= '0;
+        u_q[i] <= '0;
+        v_q[i] <= '0;
+        qf_q[i] <= '0;
+      end
       viewport_width_q <= '0;
       viewport_height_q <= '0;
       density_log2_q <= '0;
+      guard_q <= 1'b0;
     end else if (load_i) begin
-      tri_x_q <= tri_x_i;
-      tri_y_q <= tri_y_i;
-      tri_q_q <= tri_q_i;
-      tri_u_q <= tri_u_i;
-      tri_v_q <= tri_v_i;
+      for (int i = 0; i < 3; i++) begin
+        x_q[i] <= tri_x_i[32*i +: CoordBits];
+        y_q[i] <= tri_y_i[32*i +: CoordBits];
+        u_q[i] <= tri_u_i[32*i +: UvBits];
+        v_q[i] <= tri_v_i[32*i +: UvBits];
+        qf_q[i] <= tri_q_i[32*i +: 32];
+      end
       viewport_width_q <= viewport_width_i;
       viewport_height_q <= viewport_height_i;
       density_log2_q <= density_log2_i;
+      guard_q <= correction_i;
     end
   end
 
-  // ---------------------------------------------------------------- stage 0
-  // Registered results of stage 0.
-  logic                empty_d, empty_q;
-  logic                x_major_d, x_major_q;
-  logic signed [63:0]  g_d, g_q;
-  logic signed [31:0]  shift_d, shift_q;
-  logic [7:0]          flags_d, flags_q;
-  logic [31:0]         box_x_lo_d, box_x_lo_q, box_x_hi_d, box_x_hi_q;
-  logic [31:0]         box_y_lo_d, box_y_lo_q, box_y_hi_d, box_y_hi_q;
-  logic signed [W-1:0] ref_x_d, ref_x_q, ref_y_d, ref_y_q;
-  // Exact planes scaled by det: at the reference centre, per pixel in x and y.
-  logic signed [W-1:0] q_ref_d, q_ref_q, q_px_d, q_px_q, q_py_d, q_py_q;
-  logic signed [W-1:0] u_ref_d, u_ref_q, u_px_d, u_px_q, u_py_d, u_py_q;
-  logic signed [W-1:0] v_ref_d, v_ref_q, v_px_d, v_px_q, v_py_d, v_py_q;
-  logic [191:0]        edge_a_d, edge_a_q, edge_b_d, edge_b_q, edge_c_d, edge_c_q;
-  logic [2:0]          edge_threshold_d, edge_threshold_q;
+  logic stage_a, stage_b, stage_c, stage_d, stage_e;
+  assign stage_a = setup_i && stage_count_i == 8'd0;
+  assign stage_b = setup_i && stage_count_i == 8'd1;
+  assign stage_c = setup_i && stage_count_i == 8'd2;
+  assign stage_d = setup_i && stage_count_i == 8'(2 + DivCycles);
+  assign stage_e = setup_i && stage_count_i == 8'(3 + DivCycles);
 
-  // Stage 0 temporaries.
-  logic signed [W-1:0] vx [3];
-  logic signed [W-1:0] vy [3];
-  logic signed [W-1:0] qn [3];
-  logic signed [W-1:0] uq [3];
-  logic signed [W-1:0] vq [3];
-  logic [7:0]          exponent [3];
-  logic [7:0]          max_exponent;
-  logic signed [W-1:0] dx1, dy1, dx2, dy2, det, det_sign, det_abs;
-  logic signed [W-1:0] edge_dx, edge_dy, edge_a, edge_b;
-  logic signed [W-1:0] min_x, max_x, min_y, max_y, x_lo, x_hi, y_lo, y_hi;
-  logic signed [W-1:0] q_peak, q_major, q_minor, g_num, g_den;
-  logic signed [W-1:0] one_px, half_px;
+  // ---------------------------------------------------------------- stage A
+  // Edge functions with the top-left rule (model/coverage.cpp make_edges), the
+  // box, and 1/w aligned to the largest exponent.
+  logic signed [DiffBits-1:0]  dx1, dy1, dx2, dy2;
+  logic signed [DetBits-1:0]   det;
+  logic signed [DiffBits-1:0]  edge_dx [3];
+  logic signed [DiffBits-1:0]  edge_dy [3];
+  logic signed [DiffBits-1:0]  edge_a_d [3];
+  logic signed [DiffBits-1:0]  edge_b_d [3];
+  logic signed [EdgeCBits-1:0] edge_c_d [3];
+  logic [2:0]                  edge_threshold_d;
+  logic signed [CoordBits:0]   min_x, max_x, min_y, max_y, x_lo, x_hi, y_lo, y_hi;
+  logic                        empty_d;
+  logic [PixelBits-1:0]        box_x_lo_d, box_x_hi_d, box_y_lo_d, box_y_hi_d;
+  logic signed [DiffBits-1:0]  ref_x_d, ref_y_d;
+  logic [7:0]                  max_exponent;
+  logic signed [9:0]           q_shift [3];
+  logic [33:0]                 q_wide [3];
+  logic [QVertexBits-1:0]      q_vertex_d [3];
+  logic signed [AttrUvBits-1:0] u_attr_d [3];
+  logic signed [AttrUvBits-1:0] v_attr_d [3];
+  logic                        depth_range_d;
+
+  localparam logic signed [CoordBits:0] OnePx  = (CoordBits+1)'(1) <<< SubpixelBits;
+  localparam logic signed [CoordBits:0] HalfPx = (CoordBits+1)'(1) <<< (SubpixelBits - 1);
 
   always_comb begin
-    empty_d = empty_q;
-    x_major_d = x_major_q;
-    g_d = g_q;
-    shift_d = shift_q;
-    flags_d = flags_q;
-    box_x_lo_d = box_x_lo_q;
-    box_x_hi_d = box_x_hi_q;
-    box_y_lo_d = box_y_lo_q;
-    box_y_hi_d = box_y_hi_q;
-    ref_x_d = ref_x_q;
-    ref_y_d = ref_y_q;
-    q_ref_d = q_ref_q;
-    q_px_d = q_px_q;
-    q_py_d = q_py_q;
-    u_ref_d = u_ref_q;
-    u_px_d = u_px_q;
-    u_py_d = u_py_q;
-    v_ref_d = v_ref_q;
-    v_px_d = v_px_q;
-    v_py_d = v_py_q;
-    edge_a_d = edge_a_q;
-    edge_b_d = edge_b_q;
-    edge_c_d = edge_c_q;
-    edge_threshold_d = edge_threshold_q;
+    dx1 = DiffBits'(x_q[1]) - DiffBits'(x_q[0]);
+    dy1 = DiffBits'(y_q[1]) - DiffBits'(y_q[0]);
+    dx2 = DiffBits'(x_q[2]) - DiffBits'(x_q[0]);
+    dy2 = DiffBits'(y_q[2]) - DiffBits'(y_q[0]);
+    det = DetBits'(dx1) * DetBits'(dy2) - DetBits'(dx2) * DetBits'(dy1);
     for (int i = 0; i < 3; i++) begin
-      vx[i] = '0;
-      vy[i] = '0;
-      qn[i] = '0;
-      uq[i] = '0;
-      vq[i] = '0;
-      exponent[i] = '0;
+      edge_dx[i] = DiffBits'(x_q[(i + 2) % 3]) - DiffBits'(x_q[(i + 1) % 3]);
+      edge_dy[i] = DiffBits'(y_q[(i + 2) % 3]) - DiffBits'(y_q[(i + 1) % 3]);
+      edge_a_d[i] = det < 0 ? edge_dy[i] : -edge_dy[i];
+      edge_b_d[i] = det < 0 ? -edge_dx[i] : edge_dx[i];
+      edge_c_d[i] = EdgeCBits'(edge_dy[i]) * EdgeCBits'(x_q[(i + 1) % 3]) -
+                    EdgeCBits'(edge_dx[i]) * EdgeCBits'(y_q[(i + 1) % 3]);
+      if (det < 0) edge_c_d[i] = -edge_c_d[i];
+      edge_threshold_d[i] = !((edge_a_d[i] == 0 && edge_b_d[i] > 0) || edge_a_d[i] > 0);
     end
-    {max_exponent, dx1, dy1, dx2, dy2, det, det_sign, det_abs} = '0;
-    {edge_dx, edge_dy, edge_a, edge_b} = '0;
-    {min_x, max_x, min_y, max_y, x_lo, x_hi, y_lo, y_hi} = '0;
-    {q_peak, q_major, q_minor, g_num, g_den, one_px, half_px} = '0;
 
-    if (stage0_i) begin
-      one_px = 128'sd1 <<< SubpixelBits;
-      half_px = 128'sd1 <<< (SubpixelBits - 1);
-      for (int i = 0; i < 3; i++) begin
-        vx[i] = sext32(tri_x_q[32*i +: 32]);
-        vy[i] = sext32(tri_y_q[32*i +: 32]);
-      end
-      // Edge functions and the top-left rule (model/coverage.cpp make_edges).
-      dx1 = vx[1] - vx[0];
-      dy1 = vy[1] - vy[0];
-      dx2 = vx[2] - vx[0];
-      dy2 = vy[2] - vy[0];
-      det = dx1 * dy2 - dx2 * dy1;
-      det_sign = det < 0 ? -128'sd1 : 128'sd1;
-      det_abs = abs_wide(det);
-      for (int i = 0; i < 3; i++) begin
-        edge_dx = vx[(i + 2) % 3] - vx[(i + 1) % 3];
-        edge_dy = vy[(i + 2) % 3] - vy[(i + 1) % 3];
-        edge_a = -edge_dy * det_sign;
-        edge_b = edge_dx * det_sign;
-        edge_a_d[64*i +: 64] = edge_a[63:0];
-        edge_b_d[64*i +: 64] = edge_b[63:0];
-        edge_c_d[64*i +: 64] =
-            64'((edge_dy * vx[(i + 1) % 3] - edge_dx * vy[(i + 1) % 3]) * det_sign);
-        edge_threshold_d[i] = !((edge_a == 0 && edge_b > 0) || edge_a > 0);
-      end
-      // Bounding box of the pixel centres, clipped to the viewport.
-      min_x = vx[0];
-      max_x = vx[0];
-      min_y = vy[0];
-      max_y = vy[0];
-      for (int i = 1; i < 3; i++) begin
-        if (vx[i] < min_x) min_x = vx[i];
-        if (vx[i] > max_x) max_x = vx[i];
-        if (vy[i] < min_y) min_y = vy[i];
-        if (vy[i] > max_y) max_y = vy[i];
-      end
-      x_lo = -cd_floor_div(half_px - min_x, one_px);
-      x_hi = cd_floor_div(max_x - half_px, one_px);
-      y_lo = -cd_floor_div(half_px - min_y, one_px);
-      y_hi = cd_floor_div(max_y - half_px, one_px);
-      if (x_lo < 0) x_lo = '0;
-      if (y_lo < 0) y_lo = '0;
-      if (x_hi > $signed({112'd0, viewport_width_q}) - 1) x_hi = $signed({112'd0, viewport_width_q}) - 1;
-      if (y_hi > $signed({112'd0, viewport_height_q}) - 1) y_hi = $signed({112'd0, viewport_height_q}) - 1;
-      box_x_lo_d = x_lo[31:0];
-      box_x_hi_d = x_hi[31:0];
-      box_y_lo_d = y_lo[31:0];
-      box_y_hi_d = y_hi[31:0];
-      empty_d = det == 0 || x_lo > x_hi || y_lo > y_hi;
+    // Pixels whose centres the vertices' extent reaches, clipped to the viewport.
+    min_x = (CoordBits+1)'(x_q[0]);
+    max_x = min_x;
+    min_y = (CoordBits+1)'(y_q[0]);
+    max_y = min_y;
+    for (int i = 1; i < 3; i++) begin
+      if ((CoordBits+1)'(x_q[i]) < min_x) min_x = (CoordBits+1)'(x_q[i]);
+      if ((CoordBits+1)'(x_q[i]) > max_x) max_x = (CoordBits+1)'(x_q[i]);
+      if ((CoordBits+1)'(y_q[i]) < min_y) min_y = (CoordBits+1)'(y_q[i]);
+      if ((CoordBits+1)'(y_q[i]) > max_y) max_y = (CoordBits+1)'(y_q[i]);
+    end
+    // ceil((min - half) / one) and floor((max - half) / one): arithmetic shifts.
+    x_lo = (min_x - HalfPx + OnePx - 1) >>> SubpixelBits;
+    x_hi = (max_x - HalfPx) >>> SubpixelBits;
+    y_lo = (min_y - HalfPx + OnePx - 1) >>> SubpixelBits;
+    y_hi = (max_y - HalfPx) >>> SubpixelBits;
+    if (x_lo < 0) x_lo = '0;
+    if (y_lo < 0) y_lo = '0;
+    if (x_hi > (CoordBits+1)'($signed({1'b0, viewport_width_q})) - (CoordBits+1)'(1))
+      x_hi = (CoordBits+1)'($signed({1'b0, viewport_width_q})) - (CoordBits+1)'(1);
+    if (y_hi > (CoordBits+1)'($signed({1'b0, viewport_height_q})) - (CoordBits+1)'(1))
+      y_hi = (CoordBits+1)'($signed({1'b0, viewport_height_q})) - (CoordBits+1)'(1);
+    empty_d = det == 0 || x_lo > x_hi || y_lo > y_hi;
+    box_x_lo_d = PixelBits'(x_lo);
+    box_x_hi_d = PixelBits'(x_hi);
+    box_y_lo_d = PixelBits'(y_lo);
+    box_y_hi_d = PixelBits'(y_hi);
+    // The reference pixel centre (the box's top-left) relative to vertex 0.
+    ref_x_d = (DiffBits'($signed({1'b0, box_x_lo_d})) <<< SubpixelBits) + DiffBits'(HalfPx) -
+              DiffBits'(x_q[0]);
+    ref_y_d = (DiffBits'($signed({1'b0, box_y_lo_d})) <<< SubpixelBits) + DiffBits'(HalfPx) -
+              DiffBits'(y_q[0]);
 
-      // Normalise 1/w to the largest exponent; U = u q, V = v q exactly.
-      max_exponent = '0;
-      for (int i = 0; i < 3; i++) begin
-        exponent[i] = tri_q_q[32*i + 23 +: 8];
-        if (exponent[i] > max_exponent) max_exponent = exponent[i];
-      end
-      flags_d = '0;
-      for (int i = 0; i < 3; i++) begin
-        qn[i] = cd_shift_round($signed({104'd0, 1'b1, tri_q_q[32*i +: 23]}),
-                               $signed({24'd0, max_exponent - exponent[i]}) + 32'sd24 - 32'(QBits), 1'b1);
-        if (qn[i] == 0 && !empty_d) flags_d = flags_d | FlagDepthRange;
-        uq[i] = qn[i] * sext32(tri_u_q[32*i +: 32]);
-        vq[i] = qn[i] * sext32(tri_v_q[32*i +: 32]);
-      end
-
-      // Plane equations scaled by det, signed so that q |det| > 0.
-      ref_x_d = (sext32(box_x_lo_d) <<< SubpixelBits) + half_px - vx[0];
-      ref_y_d = (sext32(box_y_lo_d) <<< SubpixelBits) + half_px - vy[0];
-      q_px_d = det_sign * ((qn[1] - qn[0]) * dy2 - (qn[2] - qn[0]) * dy1);
-      q_py_d = det_sign * ((qn[2] - qn[0]) * dx1 - (qn[1] - qn[0]) * dx2);
-      q_ref_d = det_sign * qn[0] * det + q_px_d * ref_x_d + q_py_d * ref_y_d;
-      u_px_d = det_sign * ((uq[1] - uq[0]) * dy2 - (uq[2] - uq[0]) * dy1);
-      u_py_d = det_sign * ((uq[2] - uq[0]) * dx1 - (uq[1] - uq[0]) * dx2);
-      u_ref_d = det_sign * uq[0] * det + u_px_d * ref_x_d + u_py_d * ref_y_d;
-      v_px_d = det_sign * ((vq[1] - vq[0]) * dy2 - (vq[2] - vq[0]) * dy1);
-      v_py_d = det_sign * ((vq[2] - vq[0]) * dx1 - (vq[1] - vq[0]) * dx2);
-      v_ref_d = det_sign * vq[0] * det + v_px_d * ref_x_d + v_py_d * ref_y_d;
-      q_px_d = q_px_d <<< SubpixelBits;
-      q_py_d = q_py_d <<< SubpixelBits;
-      u_px_d = u_px_d <<< SubpixelBits;
-      u_py_d = u_py_d <<< SubpixelBits;
-      v_px_d = v_px_d <<< SubpixelBits;
-      v_py_d = v_py_d <<< SubpixelBits;
-
-      // Orientation: lines run along the axis in which q changes least.
-      x_major_d = abs_wide(q_px_d) <= abs_wide(q_py_d);
-      q_major = x_major_d ? q_px_d : q_py_d;
-      q_minor = x_major_d ? q_py_d : q_px_d;
-      // g = round(-q_major 2^g_frac / q_minor), ties toward +inf.
-      g_num = -q_major <<< GFrac;
-      g_den = q_minor;
-      if (g_den < 0) begin
-        g_num = -g_num;
-        g_den = -g_den;
-      end
-      g_d = q_minor == 0 ? 64'sd0 : 64'(cd_floor_div(2 * g_num + g_den, 2 * g_den));
-
-      // Shared shift: after it, q |det| fits plane_bits.
-      q_peak = '0;
-      for (int i = 0; i < 3; i++) begin
-        if (qn[i] * det_abs > q_peak) q_peak = qn[i] * det_abs;
-      end
-      shift_d = $signed({24'd0, cd_bit_length(q_peak)}) - 32'(PlaneBits);
+    // q_i = round(m_i 2^-(E - e_i + 24 - q_bits)); 0 once the shift passes 25.
+    max_exponent = qf_q[0][30:23];
+    for (int i = 1; i < 3; i++) if (qf_q[i][30:23] > max_exponent) max_exponent = qf_q[i][30:23];
+    depth_range_d = 1'b0;
+    for (int i = 0; i < 3; i++) begin
+      q_shift[i] = $signed({2'b00, max_exponent - qf_q[i][30:23]}) + 10'sd24 - 10'(QBits);
+      q_wide[i] = {10'd0, 1'b1, qf_q[i][22:0]};
+      if (q_shift[i] <= 0) q_wide[i] = q_wide[i] << (-q_shift[i]);
+      else if (q_shift[i] > 10'sd25) q_wide[i] = '0;
+      else q_wide[i] = (q_wide[i] + (34'd1 << (q_shift[i] - 10'sd1))) >> q_shift[i];
+      q_vertex_d[i] = QVertexBits'(q_wide[i]);
+      if (q_vertex_d[i] == '0) depth_range_d = 1'b1;
+      u_attr_d[i] = AttrUvBits'($signed({1'b0, q_vertex_d[i]})) * AttrUvBits'(u_q[i]);
+      v_attr_d[i] = AttrUvBits'($signed({1'b0, q_vertex_d[i]})) * AttrUvBits'(v_q[i]);
     end
   end
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      empty_q <= 1'b1;
-      x_major_q <= 1'b1;
-      g_q <= '0;
-      shift_q <= '0;
-      flags_q <= '0;
-      box_x_lo_q <= '0;
-      box_x_hi_q <= '0;
-      box_y_lo_q <= '0;
-      box_y_hi_q <= '0;
-      ref_x_q <= '0;
-      ref_y_q <= '0;
-      q_ref_q <= '0;
-      q_px_q <= '0;
-      q_py_q <= '0;
-      u_ref_q <= '0;
-      u_px_q <= '0;
-      u_py_q <= '0;
-      v_ref_q <= '0;
-      v_px_q <= '0;
-      v_py_q <= '0;
-      edge_a_q <= '0;
-      edge_b_q <= '0;
-      edge_c_q <= '0;
-      edge_threshold_q <= '0;
-    end else begin
-      empty_q <= empty_d;
-      x_major_q <= x_major_d;
-      g_q <= g_d;
-      shift_q <= shift_d;
-      flags_q <= flags_d;
+  logic signed [DiffBits-1:0]  dx1_q, dy1_q, dx2_q, dy2_q;
+  logic signed [DetBits-1:0]   det_q;
+  logic signed [DiffBits-1:0]  edge_a_q [3];
+  logic signed [DiffBits-1:0]  edge_b_q [3];
+  logic signed [EdgeCBits-1:0] edge_c_q [3];
+  logic [2:0]                  edge_threshold_q;
+  logic                        empty_q;
+  logic [PixelBits-1:0]        box_x_lo_q, box_x_hi_q, box_y_lo_q, box_y_hi_q;
+  logic signed [DiffBits-1:0]  ref_x_q, ref_y_q;
+  logic [QVertexBits-1:0]      q_vertex_q [3];
+  logic signed [AttrUvBits-1:0] u_attr_q [3];
+  logic signed [AttrUvBits-1:0] v_attr_q [3];
+  logic                        depth_range_q;
+
+  always_ff @(posedge clk_i) begin
+    if (stage_a) begin
+      dx1_q <= dx1;
+      dy1_q <= dy1;
+      dx2_q <= dx2;
+      dy2_q <= dy2;
+      det_q <= det;
+      edge_a_q <= edge_a_d;
+      edge_b_q <= edge_b_d;
+      edge_c_q <= edge_c_d;
+      edge_threshold_q <= edge_threshold_d;
       box_x_lo_q <= box_x_lo_d;
       box_x_hi_q <= box_x_hi_d;
       box_y_lo_q <= box_y_lo_d;
       box_y_hi_q <= box_y_hi_d;
       ref_x_q <= ref_x_d;
       ref_y_q <= ref_y_d;
-      q_ref_q <= q_ref_d;
-      q_px_q <= q_px_d;
-      q_py_q <= q_py_d;
-      u_ref_q <= u_ref_d;
-      u_px_q <= u_px_d;
-      u_py_q <= u_py_d;
-      v_ref_q <= v_ref_d;
-      v_px_q <= v_px_d;
-      v_py_q <= v_py_d;
-      edge_a_q <= edge_a_d;
-      edge_b_q <= edge_b_d;
-      edge_c_q <= edge_c_d;
-      edge_threshold_q <= edge_threshold_d;
-    end
-  end
-
-  // ---------------------------------------------------------------- stage 1
-  // Normalised planes for the fill, walk geometry and the line range.
-  logic signed [W-1:0] q_at_ref_d, q_at_ref_q, q_per_line_d, q_per_line_q;
-  logic signed [W-1:0] u_at_ref_d, u_at_ref_q, u_per_line_d, u_per_line_q;
-  logic signed [W-1:0] v_at_ref_d, v_at_ref_q, v_per_line_d, v_per_line_q;
-  logic signed [W-1:0] step_u_d, step_u_q, step_v_d, step_v_q;
-  logic [31:0]         major_lo_d, major_lo_q, major_count_d, major_count_q;
-  logic [31:0]         minor_lo_d, minor_lo_q, minor_hi_d, minor_hi_q;
-  logic signed [63:0]  line_lo_d, line_lo_q, line_hi_d, line_hi_q;
-
-  logic signed [W-1:0] u_major, u_minor, v_major, v_minor, q_minor1;
-  logic signed [W-1:0] ref_major, ref_minor, vertex_major, vertex_minor, kappa;
-  logic signed [W-1:0] kappa_lo, kappa_hi, kappa_scale, line_lo, line_hi, round_last;
-  logic signed [W-1:0] minor_extent;
-  logic signed [31:0]  line_shift;
-
-  always_comb begin
-    q_at_ref_d = q_at_ref_q;
-    q_per_line_d = q_per_line_q;
-    u_at_ref_d = u_at_ref_q;
-    u_per_line_d = u_per_line_q;
-    v_at_ref_d = v_at_ref_q;
-    v_per_line_d = v_per_line_q;
-    step_u_d = step_u_q;
-    step_v_d = step_v_q;
-    major_lo_d = major_lo_q;
-    major_count_d = major_count_q;
-    minor_lo_d = minor_lo_q;
-    minor_hi_d = minor_hi_q;
-    line_lo_d = line_lo_q;
-    line_hi_d = line_hi_q;
-    {u_major, u_minor, v_major, v_minor, q_minor1} = '0;
-    {ref_major, ref_minor, vertex_major, vertex_minor, kappa} = '0;
-    {kappa_lo, kappa_hi, kappa_scale, line_lo, line_hi, round_last} = '0;
-    minor_extent = '0;
-    line_shift = '0;
-
-    if (stage1_i) begin
-      line_shift = {30'd0, density_log2_q};
-      q_minor1 = x_major_q ? q_py_q : q_px_q;
-      u_major = x_major_q ? u_px_q : u_py_q;
-      u_minor = x_major_q ? u_py_q : u_px_q;
-      v_major = x_major_q ? v_px_q : v_py_q;
-      v_minor = x_major_q ? v_py_q : v_px_q;
-      q_at_ref_d = cd_shift_round(q_ref_q, shift_q, 1'b1);
-      u_at_ref_d = cd_shift_round(u_ref_q, shift_q, 1'b1);
-      v_at_ref_d = cd_shift_round(v_ref_q, shift_q, 1'b1);
-      q_per_line_d = cd_shift_round(q_minor1, shift_q + line_shift, 1'b1);
-      u_per_line_d = cd_shift_round(u_minor, shift_q + line_shift, 1'b1);
-      v_per_line_d = cd_shift_round(v_minor, shift_q + line_shift, 1'b1);
-      step_u_d = cd_shift_round((u_major <<< GFrac) + sext64(g_q) * u_minor,
-                                shift_q + 32'(GFrac), 1'b1);
-      step_v_d = cd_shift_round((v_major <<< GFrac) + sext64(g_q) * v_minor,
-                                shift_q + 32'(GFrac), 1'b1);
-
-      major_lo_d = x_major_q ? box_x_lo_q : box_y_lo_q;
-      major_count_d = x_major_q ? box_x_hi_q - box_x_lo_q + 1 : box_y_hi_q - box_y_lo_q + 1;
-      minor_lo_d = x_major_q ? box_y_lo_q : box_x_lo_q;
-      minor_hi_d = x_major_q ? box_y_hi_q : box_x_hi_q;
-
-      // kappa = density ((minor - minor_ref) - g (major - major_ref)) at each
-      // vertex, in 2^-(subpixel_bits + g_frac) units.
-      ref_major = x_major_q ? ref_x_q : ref_y_q;
-      ref_minor = x_major_q ? ref_y_q : ref_x_q;
-      for (int i = 0; i < 3; i++) begin
-        vertex_major = (x_major_q ? sext32(tri_x_q[32*i +: 32]) - sext32(tri_x_q[31:0])
-                                  : sext32(tri_y_q[32*i +: 32]) - sext32(tri_y_q[31:0])) - ref_major;
-        vertex_minor = (x_major_q ? sext32(tri_y_q[32*i +: 32]) - sext32(tri_y_q[31:0])
-                                  : sext32(tri_x_q[32*i +: 32]) - sext32(tri_x_q[31:0])) - ref_minor;
-        kappa = ((vertex_minor <<< GFrac) - sext64(g_q) * vertex_major) <<< density_log2_q;
-        if (i == 0 || kappa < kappa_lo) kappa_lo = kappa;
-        if (i == 0 || kappa > kappa_hi) kappa_hi = kappa;
-      end
-      kappa_scale = 128'sd1 <<< (SubpixelBits + GFrac);
-      // ceil(x / 2^n) = -floor(-x / 2^n), an arithmetic shift.
-      line_lo = -((kappa_scale - 2 * kappa_lo) >>> (SubpixelBits + GFrac + 1));
-      line_hi = -((-2 * kappa_hi - kappa_scale) >>> (SubpixelBits + GFrac + 1)) - 1;
-      // The box bounds them too: line = density minor_offset - round(density g o).
-      round_last = ((sext64(g_q) * $signed({96'd0, major_count_d - 32'd1}) <<< density_log2_q)
-                    + (128'sd1 <<< (GFrac - 1))) >>> GFrac;
-      if (round_last > 0) begin
-        if (line_lo < -round_last) line_lo = -round_last;
-      end else begin
-        if (line_lo < 0) line_lo = '0;
-      end
-      minor_extent = $signed({96'd0, minor_hi_d - minor_lo_d}) <<< density_log2_q;
-      if (round_last < 0) begin
-        if (line_hi > minor_extent - round_last) line_hi = minor_extent - round_last;
-      end else begin
-        if (line_hi > minor_extent) line_hi = minor_extent;
-      end
-      line_lo_d = 64'(line_lo);
-      line_hi_d = 64'(line_hi);
+      q_vertex_q <= q_vertex_d;
+      u_attr_q <= u_attr_d;
+      v_attr_q <= v_attr_d;
     end
   end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      q_at_ref_q <= '0;
-      q_per_line_q <= '0;
-      u_at_ref_q <= '0;
-      u_per_line_q <= '0;
-      v_at_ref_q <= '0;
-      v_per_line_q <= '0;
-      step_u_q <= '0;
-      step_v_q <= '0;
-      major_lo_q <= '0;
-      major_count_q <= '0;
-      minor_lo_q <= '0;
-      minor_hi_q <= '0;
-      line_lo_q <= '0;
-      line_hi_q <= '0;
-    end else begin
-      q_at_ref_q <= q_at_ref_d;
-      q_per_line_q <= q_per_line_d;
-      u_at_ref_q <= u_at_ref_d;
-      u_per_line_q <= u_per_line_d;
-      v_at_ref_q <= v_at_ref_d;
-      v_per_line_q <= v_per_line_d;
-      step_u_q <= step_u_d;
-      step_v_q <= step_v_d;
+      empty_q <= 1'b1;
+      depth_range_q <= 1'b0;
+    end else if (stage_a) begin
+      empty_q <= empty_d;
+      depth_range_q <= depth_range_d;
+    end
+  end
+
+  // ---------------------------------------------------------------- stage B
+  // Plane coefficients, signed so that q |det| > 0: A_x = s (dA1 dy2 - dA2 dy1),
+  // A_y = s (dA2 dx1 - dA1 dx2), per subpixel.
+  logic signed [DetBits-1:0]    det_abs;
+  logic signed [AttrQBits:0]    dq1, dq2;
+  logic signed [AttrUvBits:0]   du1, du2, dv1, dv2;
+  logic signed [CoefQBits-1:0]  q_coef_x_d, q_coef_y_d;
+  logic signed [CoefUvBits-1:0] u_coef_x_d, u_coef_y_d, v_coef_x_d, v_coef_y_d;
+  logic [PeakBits-1:0]          peak_candidate [3];
+  logic [PeakBits-1:0]          q_peak_d;
+
+  always_comb begin
+    det_abs = det_q < 0 ? -det_q : det_q;
+    dq1 = (AttrQBits+1)'($signed({1'b0, q_vertex_q[1]})) - (AttrQBits+1)'($signed({1'b0, q_vertex_q[0]}));
+    dq2 = (AttrQBits+1)'($signed({1'b0, q_vertex_q[2]})) - (AttrQBits+1)'($signed({1'b0, q_vertex_q[0]}));
+    du1 = (AttrUvBits+1)'(u_attr_q[1]) - (AttrUvBits+1)'(u_attr_q[0]);
+    du2 = (AttrUvBits+1)'(u_attr_q[2]) - (AttrUvBits+1)'(u_attr_q[0]);
+    dv1 = (AttrUvBits+1)'(v_attr_q[1]) - (AttrUvBits+1)'(v_attr_q[0]);
+    dv2 = (AttrUvBits+1)'(v_attr_q[2]) - (AttrUvBits+1)'(v_attr_q[0]);
+    q_coef_x_d = CoefQBits'(dq1) * CoefQBits'(dy2_q) - CoefQBits'(dq2) * CoefQBits'(dy1_q);
+    q_coef_y_d = CoefQBits'(dq2) * CoefQBits'(dx1_q) - CoefQBits'(dq1) * CoefQBits'(dx2_q);
+    u_coef_x_d = CoefUvBits'(du1) * CoefUvBits'(dy2_q) - CoefUvBits'(du2) * CoefUvBits'(dy1_q);
+    u_coef_y_d = CoefUvBits'(du2) * CoefUvBits'(dx1_q) - CoefUvBits'(du1) * CoefUvBits'(dx2_q);
+    v_coef_x_d = CoefUvBits'(dv1) * CoefUvBits'(dy2_q) - CoefUvBits'(dv2) * CoefUvBits'(dy1_q);
+    v_coef_y_d = CoefUvBits'(dv2) * CoefUvBits'(dx1_q) - CoefUvBits'(dv1) * CoefUvBits'(dx2_q);
+    if (det_q < 0) begin
+      q_coef_x_d = -q_coef_x_d;
+      q_coef_y_d = -q_coef_y_d;
+      u_coef_x_d = -u_coef_x_d;
+      u_coef_y_d = -u_coef_y_d;
+      v_coef_x_d = -v_coef_x_d;
+      v_coef_y_d = -v_coef_y_d;
+    end
+    q_peak_d = '0;
+    for (int i = 0; i < 3; i++) begin
+      peak_candidate[i] = PeakBits'(q_vertex_q[i]) * PeakBits'(det_abs);
+      if (peak_candidate[i] > q_peak_d) q_peak_d = peak_candidate[i];
+    end
+  end
+
+  logic signed [CoefQBits-1:0]  q_coef_x_q, q_coef_y_q;
+  logic signed [CoefUvBits-1:0] u_coef_x_q, u_coef_y_q, v_coef_x_q, v_coef_y_q;
+  logic [PeakBits-1:0]          q_peak_q;
+  logic signed [DetBits-1:0]    det_abs_q;
+
+  always_ff @(posedge clk_i) begin
+    if (stage_b) begin
+      q_coef_x_q <= q_coef_x_d;
+      q_coef_y_q <= q_coef_y_d;
+      u_coef_x_q <= u_coef_x_d;
+      u_coef_y_q <= u_coef_y_d;
+      v_coef_x_q <= v_coef_x_d;
+      v_coef_y_q <= v_coef_y_d;
+      q_peak_q <= q_peak_d;
+      det_abs_q <= det_abs;
+    end
+  end
+
+  // ---------------------------------------------------------------- stage C
+  // Planes at the reference centre: s A0 det + A_x ref_x + A_y ref_y (exact),
+  // orientation, the shared shift, and the divider operands.
+  logic signed [ExactRefQBits-1:0]  q_ref_d;
+  logic signed [ExactRefUvBits-1:0] u_ref_d, v_ref_d;
+  logic                             x_major_d;
+  logic [7:0]                       peak_length;
+  logic signed [ShiftBits-1:0]      shift_d;
+  logic signed [CoefQBits-1:0]      q_major, q_minor;
+  logic signed [GDivNumBits:0]      g_numerator;
+  logic [GDivNumBits-1:0]           g_div_num;
+  logic [GDivDenBits-1:0]           g_div_den;
+  logic signed [DiffBits-1:0]       edge_fixed [3];
+  logic signed [DiffBits-1:0]       edge_free [3];
+  logic [FreeBits-1:0]              edge_free_abs [3];
+  logic [FreeBits-1:0]              edge_fixed_abs [3];
+  logic signed [EdgeNBits-1:0]      edge_n [3];
+  logic signed [BoundNumBits-1:0]   edge_n_high [3];
+  logic [BoundNumBits-1:0]          edge_n_high_abs [3];
+  logic [PixelBits-1:0]             major_lo_c;
+
+  always_comb begin
+    q_ref_d = ExactRefQBits'($signed({1'b0, q_vertex_q[0]})) * ExactRefQBits'(det_abs_q) +
+              ExactRefQBits'(q_coef_x_q) * ExactRefQBits'(ref_x_q) +
+              ExactRefQBits'(q_coef_y_q) * ExactRefQBits'(ref_y_q);
+    u_ref_d = ExactRefUvBits'(u_attr_q[0]) * ExactRefUvBits'(det_abs_q) +
+              ExactRefUvBits'(u_coef_x_q) * ExactRefUvBits'(ref_x_q) +
+              ExactRefUvBits'(u_coef_y_q) * ExactRefUvBits'(ref_y_q);
+    v_ref_d = ExactRefUvBits'(v_attr_q[0]) * ExactRefUvBits'(det_abs_q) +
+              ExactRefUvBits'(v_coef_x_q) * ExactRefUvBits'(ref_x_q) +
+              ExactRefUvBits'(v_coef_y_q) * ExactRefUvBits'(ref_y_q);
+    // Lines run along the axis in which q changes least.
+    x_major_d = (q_coef_x_q < 0 ? -q_coef_x_q : q_coef_x_q) <= (q_coef_y_q < 0 ? -q_coef_y_q : q_coef_y_q);
+    peak_length = '0;
+    for (int i = 0; i < PeakBits; i++) if (q_peak_q[i]) peak_length = 8'(i + 1);
+    shift_d = ShiftBits'($signed({1'b0, peak_length})) - ShiftBits'(PlaneBits);
+
+    // g = round(-q_major 2^g_frac / q_minor) = floor((2 N' + D') / (2 D')) with
+    // N' = -q_major sign(q_minor) 2^g_frac and D' = |q_minor|.
+    q_major = x_major_d ? q_coef_x_q : q_coef_y_q;
+    q_minor = x_major_d ? q_coef_y_q : q_coef_x_q;
+    g_numerator = ((q_minor < 0 ? (GDivNumBits+1)'(q_major) : -(GDivNumBits+1)'(q_major)) <<< (GFrac + 1)) +
+                  (q_minor < 0 ? -(GDivNumBits+1)'(q_minor) : (GDivNumBits+1)'(q_minor));
+    g_div_num = GDivNumBits'(g_numerator < 0 ? -g_numerator : g_numerator);
+    g_div_den = GDivDenBits'(q_minor < 0 ? -q_minor : q_minor) << 1;
+
+    // Edge i at the first column: N0 = E - threshold there (model/coverage.cpp
+    // covered_span), divided by |free| 2^sp as (N0 >> sp) / |free|.
+    major_lo_c = x_major_d ? box_x_lo_q : box_y_lo_q;
+    for (int i = 0; i < 3; i++) begin
+      edge_fixed[i] = x_major_d ? edge_a_q[i] : edge_b_q[i];
+      edge_free[i] = x_major_d ? edge_b_q[i] : edge_a_q[i];
+      edge_free_abs[i] = FreeBits'(edge_free[i] < 0 ? -edge_free[i] : edge_free[i]);
+      edge_fixed_abs[i] = FreeBits'(edge_fixed[i] < 0 ? -edge_fixed[i] : edge_fixed[i]);
+      edge_n[i] = EdgeNBits'(edge_fixed[i]) *
+                      ((EdgeNBits'($signed({1'b0, major_lo_c})) <<< SubpixelBits) + EdgeNBits'(HalfPx)) +
+                  EdgeNBits'(edge_free[i]) * EdgeNBits'(HalfPx) + EdgeNBits'(edge_c_q[i]) -
+                  EdgeNBits'($signed({1'b0, edge_threshold_q[i]}));
+      edge_n_high[i] = BoundNumBits'(edge_n[i] >>> SubpixelBits);
+      edge_n_high_abs[i] = BoundNumBits'(edge_n_high[i] < 0 ? -edge_n_high[i] : edge_n_high[i]);
+    end
+  end
+
+  logic signed [ExactRefQBits-1:0]  q_ref_q;
+  logic signed [ExactRefUvBits-1:0] u_ref_q, v_ref_q;
+  logic                             x_major_q;
+  logic signed [ShiftBits-1:0]      shift_q;
+  logic                             g_zero_q, g_negative_q;
+  logic signed [DiffBits-1:0]       edge_fixed_q [3];
+  logic signed [DiffBits-1:0]       edge_free_q [3];
+  logic signed [BoundNumBits-1:0]   edge_n_high_q [3];
+  logic [SubpixelBits-1:0]          edge_n_low_q [3];
+
+  always_ff @(posedge clk_i) begin
+    if (stage_c) begin
+      q_ref_q <= q_ref_d;
+      u_ref_q <= u_ref_d;
+      v_ref_q <= v_ref_d;
+      x_major_q <= x_major_d;
+      shift_q <= shift_d;
+      g_zero_q <= q_minor == 0;
+      g_negative_q <= g_numerator < 0;
+      edge_fixed_q <= edge_fixed;
+      edge_free_q <= edge_free;
+      edge_n_high_q <= edge_n_high;
+      for (int i = 0; i < 3; i++) edge_n_low_q[i] <= edge_n[i][SubpixelBits-1:0];
+    end
+  end
+
+  // ---------------------------------------------------------------- dividers
+  // All start in stage C and finish by stage D (DivCycles later).
+  logic [GDivQuoBits-1:0] g_quotient;
+  logic [GDivDenBits-1:0] g_remainder;
+  logic                   g_overflow;
+
+  serial_divider #(
+    .NumBits(GDivNumBits), .DenBits(GDivDenBits), .QuoBits(GDivQuoBits),
+    .BitsPerCycle(DivBitsPerCycle)
+  ) u_g_divider (
+    .clk_i, .rst_ni,
+    .start_i      (stage_c),
+    .numerator_i  (g_div_num),
+    .denominator_i(g_div_den),
+    .quotient_o   (g_quotient),
+    .remainder_o  (g_remainder),
+    .overflow_o   (g_overflow)
+  );
+
+  logic [BoundDivQuoBits-1:0] bound_quotient [3];
+  logic [FreeBits-1:0]        bound_remainder [3];
+  logic [SlopeDivQuoBits-1:0] slope_quotient [3];
+  logic [FreeBits-1:0]        slope_remainder [3];
+  logic [2:0]                 bound_overflow, slope_overflow;
+
+  for (genvar i = 0; i < 3; i++) begin : gen_edge_dividers
+    serial_divider #(
+      .NumBits(BoundNumBits), .DenBits(FreeBits), .QuoBits(BoundDivQuoBits),
+      .BitsPerCycle(DivBitsPerCycle)
+    ) u_bound_divider (
+      .clk_i, .rst_ni,
+      .start_i      (stage_c),
+      .numerator_i  (edge_n_high_abs[i]),
+      .denominator_i(edge_free_abs[i]),
+      .quotient_o   (bound_quotient[i]),
+      .remainder_o  (bound_remainder[i]),
+      .overflow_o   (bound_overflow[i])
+    );
+    serial_divider #(
+      .NumBits(FreeBits), .DenBits(FreeBits), .QuoBits(SlopeDivQuoBits),
+      .BitsPerCycle(DivBitsPerCycle)
+    ) u_slope_divider (
+      .clk_i, .rst_ni,
+      .start_i      (stage_c),
+      .numerator_i  (edge_fixed_abs[i]),
+      .denominator_i(edge_free_abs[i]),
+      .quotient_o   (slope_quotient[i]),
+      .remainder_o  (slope_remainder[i]),
+      .overflow_o   (slope_overflow[i])
+    );
+  end
+
+  // ---------------------------------------------------------------- stage D
+  logic signed [GBits-1:0]          g_d;
+  logic [1:0]                       line_shift;
+  logic signed [ShiftBits:0]        line_norm_shift;
+  logic signed [ShiftBits+1:0]      step_norm_shift;
+  logic signed [AxisQBits-1:0]      q_axis_minor;
+  logic signed [AxisUvBits-1:0]     u_axis_major, u_axis_minor, v_axis_major, v_axis_minor;
+  logic signed [StepNumBits-1:0]    step_u_exact, step_v_exact;
+
+  always_comb begin
+    g_d = GBits'($signed({1'b0, g_quotient}));
+    if (g_negative_q) g_d = -g_d - GBits'(g_remainder != '0);
+    if (g_zero_q) g_d = '0;
+    line_shift = density_log2_q;
+    line_norm_shift = (ShiftBits+1)'(shift_q) + (ShiftBits+1)'($signed({1'b0, line_shift}));
+    step_norm_shift = (ShiftBits+2)'(shift_q) + (ShiftBits+2)'(GFrac);
+    q_axis_minor = (x_major_q ? AxisQBits'(q_coef_y_q) : AxisQBits'(q_coef_x_q)) <<< SubpixelBits;
+    u_axis_major = (x_major_q ? AxisUvBits'(u_coef_x_q) : AxisUvBits'(u_coef_y_q)) <<< SubpixelBits;
+    u_axis_minor = (x_major_q ? AxisUvBits'(u_coef_y_q) : AxisUvBits'(u_coef_x_q)) <<< SubpixelBits;
+    v_axis_major = (x_major_q ? AxisUvBits'(v_coef_x_q) : AxisUvBits'(v_coef_y_q)) <<< SubpixelBits;
+    v_axis_minor = (x_major_q ? AxisUvBits'(v_coef_y_q) : AxisUvBits'(v_coef_x_q)) <<< SubpixelBits;
+    step_u_exact = (StepNumBits'(u_axis_major) <<< GFrac) + StepNumBits'(g_d) * StepNumBits'(u_axis_minor);
+    step_v_exact = (StepNumBits'(v_axis_major) <<< GFrac) + StepNumBits'(g_d) * StepNumBits'(v_axis_minor);
+  end
+
+  // Normalisation: every plane value of the triangle shifted by the same n.
+  logic signed [PlaneRefQBits-1:0]   q_at_ref_d;
+  logic signed [PlaneRefUvBits-1:0]  u_at_ref_d, v_at_ref_d;
+  logic signed [PlaneStepQBits-1:0]  q_per_line_d;
+  logic signed [PlaneStepUvBits-1:0] u_per_line_d, v_per_line_d;
+  logic signed [StepUvBits-1:0]      step_u_d, step_v_d;
+  logic [8:0]                        normalise_saturated;
+
+  shift_round #(.InBits(ExactRefQBits), .OutBits(PlaneRefQBits), .ShiftBits(ShiftBits),
+                .MaxLeft(MaxPlaneLeft))
+    u_norm_q_ref (.in_i(q_ref_q), .shift_i(shift_q), .out_o(q_at_ref_d), .saturated_o(normalise_saturated[0]));
+  shift_round #(.InBits(ExactRefUvBits), .OutBits(PlaneRefUvBits), .ShiftBits(ShiftBits),
+                .MaxLeft(MaxPlaneLeft))
+    u_norm_u_ref (.in_i(u_ref_q), .shift_i(shift_q), .out_o(u_at_ref_d), .saturated_o(normalise_saturated[1]));
+  shift_round #(.InBits(ExactRefUvBits), .OutBits(PlaneRefUvBits), .ShiftBits(ShiftBits),
+                .MaxLeft(MaxPlaneLeft))
+    u_norm_v_ref (.in_i(v_ref_q), .shift_i(shift_q), .out_o(v_at_ref_d), .saturated_o(normalise_saturated[2]));
+  shift_round #(.InBits(AxisQBits), .OutBits(PlaneStepQBits), .ShiftBits(ShiftBits+1),
+                .MaxLeft(MaxPlaneLeft))
+    u_norm_q_line (.in_i(q_axis_minor), .shift_i(line_norm_shift), .out_o(q_per_line_d), .saturated_o(normalise_saturated[3]));
+  shift_round #(.InBits(AxisUvBits), .OutBits(PlaneStepUvBits), .ShiftBits(ShiftBits+1),
+                .MaxLeft(MaxPlaneLeft))
+    u_norm_u_line (.in_i(u_axis_minor), .shift_i(line_norm_shift), .out_o(u_per_line_d), .saturated_o(normalise_saturated[4]));
+  shift_round #(.InBits(AxisUvBits), .OutBits(PlaneStepUvBits), .ShiftBits(ShiftBits+1),
+                .MaxLeft(MaxPlaneLeft))
+    u_norm_v_line (.in_i(v_axis_minor), .shift_i(line_norm_shift), .out_o(v_per_line_d), .saturated_o(normalise_saturated[5]));
+  shift_round #(.InBits(StepNumBits), .OutBits(StepUvBits), .ShiftBits(ShiftBits+2),
+                .MaxLeft(MaxPlaneLeft))
+    u_norm_step_u (.in_i(step_u_exact), .shift_i(step_norm_shift), .out_o(step_u_d), .saturated_o(normalise_saturated[6]));
+  shift_round #(.InBits(StepNumBits), .OutBits(StepUvBits), .ShiftBits(ShiftBits+2),
+                .MaxLeft(MaxPlaneLeft))
+    u_norm_step_v (.in_i(step_v_exact), .shift_i(step_norm_shift), .out_o(step_v_d), .saturated_o(normalise_saturated[7]));
+  assign normalise_saturated[8] = g_overflow && !g_zero_q;
+
+  // Walk geometry and the line range: kappa = m ((minor - minor_ref) 2^g_frac
+  // - g (major - major_ref)) at each vertex; pixel lines lie within 1/2 of it.
+  logic [PixelBits-1:0]            major_lo_d, minor_lo_d, minor_hi_d;
+  logic [PixelBits:0]              major_count_d;
+  logic signed [DiffBits:0]        vertex_major, vertex_minor;
+  logic signed [KappaBits-1:0]     kappa, kappa_lo, kappa_hi;
+  logic signed [LineRangeBits-1:0] line_lo, line_hi, round_last, minor_extent;
+  logic signed [GBits+PixelBits+3:0] round_product;
+  logic                            no_lines_d;
+  localparam logic signed [KappaBits-1:0] KappaScale = KappaBits'(1) <<< (SubpixelBits + GFrac);
+
+  always_comb begin
+    major_lo_d = x_major_q ? box_x_lo_q : box_y_lo_q;
+    major_count_d = x_major_q ? (PixelBits+1)'(box_x_hi_q) - (PixelBits+1)'(box_x_lo_q) + 1
+                              : (PixelBits+1)'(box_y_hi_q) - (PixelBits+1)'(box_y_lo_q) + 1;
+    minor_lo_d = x_major_q ? box_y_lo_q : box_x_lo_q;
+    minor_hi_d = x_major_q ? box_y_hi_q : box_x_hi_q;
+    kappa_lo = '0;
+    kappa_hi = '0;
+    for (int i = 0; i < 3; i++) begin
+      vertex_major = (x_major_q ? (DiffBits+1)'(x_q[i]) - (DiffBits+1)'(x_q[0]) - (DiffBits+1)'(ref_x_q)
+                                : (DiffBits+1)'(y_q[i]) - (DiffBits+1)'(y_q[0]) - (DiffBits+1)'(ref_y_q));
+      vertex_minor = (x_major_q ? (DiffBits+1)'(y_q[i]) - (DiffBits+1)'(y_q[0]) - (DiffBits+1)'(ref_y_q)
+                                : (DiffBits+1)'(x_q[i]) - (DiffBits+1)'(x_q[0]) - (DiffBits+1)'(ref_x_q));
+      kappa = ((KappaBits'(vertex_minor) <<< GFrac) - KappaBits'(g_d) * KappaBits'(vertex_major))
+              <<< density_log2_q;
+      if (i == 0 || kappa < kappa_lo) kappa_lo = kappa;
+      if (i == 0 || kappa > kappa_hi) kappa_hi = kappa;
+    end
+    // ceil((2 kappa - scale) / (2 scale)) and ceil((2 kappa + scale) / (2 scale)) - 1.
+    line_lo = LineRangeBits'(-((KappaScale - (kappa_lo <<< 1)) >>> (SubpixelBits + GFrac + 1)));
+    line_hi = LineRangeBits'(-((-(kappa_hi <<< 1) - KappaScale) >>> (SubpixelBits + GFrac + 1))) - 1;
+    // The box bounds them too: line = m minor_offset - round(m g o).
+    round_product = ((GBits+PixelBits+4)'(g_d) *
+                     ((GBits+PixelBits+4)'($signed({1'b0, major_count_d})) - (GBits+PixelBits+4)'(1)))
+                    <<< density_log2_q;
+    round_last = LineRangeBits'((round_product + (GBits+PixelBits+4)'(1 <<< (GFrac - 1))) >>> GFrac);
+    minor_extent = (LineRangeBits'($signed({1'b0, minor_hi_d})) - LineRangeBits'($signed({1'b0, minor_lo_d})))
+                   <<< density_log2_q;
+    if (round_last > 0) begin
+      if (line_lo < -round_last) line_lo = -round_last;
+    end else if (line_lo < 0) begin
+      line_lo = '0;
+    end
+    if (round_last < 0) begin
+      if (line_hi > minor_extent - round_last) line_hi = minor_extent - round_last;
+    end else if (line_hi > minor_extent) begin
+      line_hi = minor_extent;
+    end
+    no_lines_d = line_lo > line_hi;
+  end
+
+  // Edge trackers (column_walker.sv): span end = floor(N / S) with remainder,
+  // and its step per column floor(fixed 2^sp / S) with remainder, S = |free| 2^sp.
+  // An edge with free = 0 keeps floor(N / 2^sp): only its sign matters.
+  logic [1:0]                     edge_kind_d [3];
+  logic signed [EdgeBoundBits-1:0] edge_bound_d [3];
+  logic [EdgeStepBits-1:0]        edge_rem_d [3];
+  logic [EdgeStepBits-1:0]        edge_step_d [3];
+  logic signed [EdgeSlopeBits-1:0] edge_slope_d [3];
+  logic [EdgeStepBits-1:0]        edge_slope_rem_d [3];
+  logic [FreeBits-1:0]            rem_high, slope_rem_high;
+  logic [FreeBits-1:0]            free_abs;
+
+  always_comb begin
+    for (int i = 0; i < 3; i++) begin
+      free_abs = FreeBits'(edge_free_q[i] < 0 ? -edge_free_q[i] : edge_free_q[i]);
+      edge_kind_d[i] = edge_free_q[i] > 0 ? 2'd1 : (edge_free_q[i] < 0 ? 2'd2 : 2'd0);
+      if (edge_free_q[i] == 0) begin
+        edge_bound_d[i] = EdgeBoundBits'(edge_n_high_q[i]);
+        edge_rem_d[i] = EdgeStepBits'(edge_n_low_q[i]);
+        edge_step_d[i] = EdgeStepBits'(1) << SubpixelBits;
+        edge_slope_d[i] = EdgeSlopeBits'(edge_fixed_q[i]);
+        edge_slope_rem_d[i] = '0;
+        rem_high = '0;
+        slope_rem_high = '0;
+      end else begin
+        // floor for a negative numerator: -q - (r != 0), remainder |free| - r.
+        edge_bound_d[i] = EdgeBoundBits'($signed({1'b0, bound_quotient[i]}));
+        rem_high = bound_remainder[i];
+        if (edge_n_high_q[i] < 0) begin
+          edge_bound_d[i] = -edge_bound_d[i] - EdgeBoundBits'(bound_remainder[i] != '0);
+          rem_high = bound_remainder[i] != '0 ? free_abs - bound_remainder[i] : '0;
+        end
+        edge_rem_d[i] = (EdgeStepBits'(rem_high) << SubpixelBits) | EdgeStepBits'(edge_n_low_q[i]);
+        edge_step_d[i] = EdgeStepBits'(free_abs) << SubpixelBits;
+        edge_slope_d[i] = EdgeSlopeBits'($signed({1'b0, slope_quotient[i]}));
+        slope_rem_high = slope_remainder[i];
+        if (edge_fixed_q[i] < 0) begin
+          edge_slope_d[i] = -edge_slope_d[i] - EdgeSlopeBits'(slope_remainder[i] != '0);
+          slope_rem_high = slope_remainder[i] != '0 ? free_abs - slope_remainder[i] : '0;
+        end
+        edge_slope_rem_d[i] = EdgeStepBits'(slope_rem_high) << SubpixelBits;
+      end
+    end
+  end
+
+  logic signed [GBits-1:0]           g_q;
+  logic [PixelBits-1:0]              major_lo_q, minor_lo_q, minor_hi_q;
+  logic [PixelBits:0]                major_count_q;
+  logic signed [LineBits-1:0]        line_lo_q, line_hi_q;
+  logic                              no_lines_q;
+  logic signed [PlaneRefQBits-1:0]   q_at_ref_q;
+  logic signed [PlaneRefUvBits-1:0]  u_at_ref_q, v_at_ref_q;
+  logic signed [PlaneStepQBits-1:0]  q_per_line_q;
+  logic signed [PlaneStepUvBits-1:0] u_per_line_q, v_per_line_q;
+  logic signed [StepUvBits-1:0]      step_u_q, step_v_q;
+  logic [1:0]                        edge_kind_q [3];
+  logic signed [EdgeBoundBits-1:0]   edge_bound_q [3];
+  logic [EdgeStepBits-1:0]           edge_rem_q [3];
+  logic [EdgeStepBits-1:0]           edge_step_q [3];
+  logic signed [EdgeSlopeBits-1:0]   edge_slope_q [3];
+  logic [EdgeStepBits-1:0]           edge_slope_rem_q [3];
+
+  always_ff @(posedge clk_i) begin
+    if (stage_d) begin
+      g_q <= g_d;
       major_lo_q <= major_lo_d;
       major_count_q <= major_count_d;
       minor_lo_q <= minor_lo_d;
       minor_hi_q <= minor_hi_d;
-      line_lo_q <= line_lo_d;
-      line_hi_q <= line_hi_d;
+      line_lo_q <= LineBits'(line_lo);
+      line_hi_q <= LineBits'(line_hi);
+      no_lines_q <= no_lines_d;
+      q_at_ref_q <= q_at_ref_d;
+      u_at_ref_q <= u_at_ref_d;
+      v_at_ref_q <= v_at_ref_d;
+      q_per_line_q <= q_per_line_d;
+      u_per_line_q <= u_per_line_d;
+      v_per_line_q <= v_per_line_d;
+      step_u_q <= step_u_d;
+      step_v_q <= step_v_d;
+      edge_kind_q <= edge_kind_d;
+      edge_bound_q <= edge_bound_d;
+      edge_rem_q <= edge_rem_d;
+      edge_step_q <= edge_step_d;
+      edge_slope_q <= edge_slope_d;
+      edge_slope_rem_q <= edge_slope_rem_d;
     end
   end
 
@@ -477,83 +721,150 @@ module setup_engine #(
   assign major_count_o = major_count_q;
   assign minor_lo_o = minor_lo_q;
   assign minor_hi_o = minor_hi_q;
+  assign no_lines_o = no_lines_q;
   assign pixel_line_lo_o = line_lo_q;
   assign pixel_line_hi_o = line_hi_q;
-  assign edge_a_o = edge_a_q;
-  assign edge_b_o = edge_b_q;
-  assign edge_c_o = edge_c_q;
-  assign edge_threshold_o = edge_threshold_q;
-  assign flags_o = flags_q;
+  always_comb begin
+    flags_o = '0;
+    flags_o[FlagDepthRange] = depth_range_q;
+  end
+  for (genvar i = 0; i < 3; i++) begin : gen_edge_outputs
+    assign edge_kind_o[2*i +: 2] = edge_kind_q[i];
+    assign edge_bound_o[EdgeBoundBits*i +: EdgeBoundBits] = edge_bound_q[i];
+    assign edge_rem_o[EdgeStepBits*i +: EdgeStepBits] = edge_rem_q[i];
+    assign edge_step_o[EdgeStepBits*i +: EdgeStepBits] = edge_step_q[i];
+    assign edge_slope_o[EdgeSlopeBits*i +: EdgeSlopeBits] = edge_slope_q[i];
+    assign edge_slope_rem_o[EdgeStepBits*i +: EdgeStepBits] = edge_slope_rem_q[i];
+  end
 
-  // ---------------------------------------------------------------- fill
-  // Line k: q_k = q_ref + k q_line (likewise U, V); reciprocal mantissa
-  // R = floor(2^(2 rb) / M) of q_k; T = U_k R, S = SU R narrowed to their formats.
-  localparam int PipeBits = 1 + AddrBits + WordBits;
-
-  logic [PipeBits-1:0] fill_result;
-  logic signed [W-1:0] line_q, line_u, line_v, line_k, mantissa_q, recip;
-  logic [7:0]          recip_exponent;
-  logic signed [31:0]  product_frac;
-  logic                depth_out, saturated;
-  logic signed [W-1:0] t_u, t_v, s_u, s_v, narrowed;
+  // ---------------------------------------------------------------- stage E and fill
+  // q, U, V on the line being issued: loaded with the first line of the first
+  // band (line_lo - guard), stepped by one line per issue; after a band's last
+  // line it steps back 2 guard lines to the next band's first.
+  logic signed [LineBits-1:0]      first_line;
+  logic signed [FillQBits-1:0]     q_line_d, q_line_q;
+  logic signed [FillUvBits-1:0]    u_line_d, u_line_q, v_line_d, v_line_q;
 
   always_comb begin
-    fill_result = '0;
-    {line_q, line_u, line_v, line_k, mantissa_q, recip} = '0;
-    {t_u, t_v, s_u, s_v, narrowed} = '0;
-    recip_exponent = '0;
-    product_frac = '0;
-    depth_out = 1'b0;
-    saturated = 1'b0;
-    if (fill_valid_i) begin
-      line_k = sext64(fill_line_i);
-      line_q = q_at_ref_q + line_k * q_per_line_q;
-      line_u = u_at_ref_q + line_k * u_per_line_q;
-      line_v = v_at_ref_q + line_k * v_per_line_q;
-      if (line_q <= 0) begin
-        depth_out = 1'b1;
-        line_q = 128'sd1;
+    first_line = line_lo_q - LineBits'($signed({1'b0, guard_q}));
+    q_line_d = q_line_q;
+    u_line_d = u_line_q;
+    v_line_d = v_line_q;
+    if (stage_e) begin
+      q_line_d = FillQBits'(q_at_ref_q) + FillQBits'(first_line) * FillQBits'(q_per_line_q);
+      u_line_d = FillUvBits'(u_at_ref_q) + FillUvBits'(first_line) * FillUvBits'(u_per_line_q);
+      v_line_d = FillUvBits'(v_at_ref_q) + FillUvBits'(first_line) * FillUvBits'(v_per_line_q);
+    end else if (fill_valid_i) begin
+      if (fill_last_i && guard_q) begin
+        q_line_d = q_line_q - FillQBits'(q_per_line_q);
+        u_line_d = u_line_q - FillUvBits'(u_per_line_q);
+        v_line_d = v_line_q - FillUvBits'(v_per_line_q);
+      end else begin
+        q_line_d = q_line_q + FillQBits'(q_per_line_q);
+        u_line_d = u_line_q + FillUvBits'(u_per_line_q);
+        v_line_d = v_line_q + FillUvBits'(v_per_line_q);
       end
-      recip_exponent = cd_bit_length(line_q) - 8'd1;
-      if (32'(recip_exponent) >= RecipBits) mantissa_q = line_q >>> (32'(recip_exponent) - RecipBits);
-      else mantissa_q = line_q <<< (RecipBits - 32'(recip_exponent));
-      recip = (128'sd1 <<< (2 * RecipBits)) / mantissa_q;
-      product_frac = 32'(RecipBits) + 32'(recip_exponent) + 32'(UvInFrac);
-
-      narrowed = cd_shift_round(line_u * recip, product_frac - 32'(TFrac), 1'b1);
-      t_u = cd_saturate(narrowed, TBits);
-      if (t_u != narrowed) saturated = 1'b1;
-      narrowed = cd_shift_round(line_v * recip, product_frac - 32'(TFrac), 1'b1);
-      t_v = cd_saturate(narrowed, TBits);
-      if (t_v != narrowed) saturated = 1'b1;
-      narrowed = cd_shift_round(step_u_q * recip, product_frac - 32'(SFrac), 1'b1);
-      s_u = cd_saturate(narrowed, SBits);
-      if (s_u != narrowed) saturated = 1'b1;
-      narrowed = cd_shift_round(step_v_q * recip, product_frac - 32'(SFrac), 1'b1);
-      s_v = cd_saturate(narrowed, SBits);
-      if (s_v != narrowed) saturated = 1'b1;
-      // Word: {depth_range, table_saturated, S.v, S.u, T.v, T.u}.
-      fill_result = {1'b1, fill_addr_i, depth_out, saturated,
-                     s_v[SBits-1:0], s_u[SBits-1:0], t_v[TBits-1:0], t_u[TBits-1:0]};
     end
   end
 
-  // The reciprocal pipeline: RecipLatency stages between issue and write.
-  logic [RecipLatency*PipeBits-1:0] pipe_q;
-
-  if (RecipLatency == 1) begin : gen_pipe_one
-    always_ff @(posedge clk_i or negedge rst_ni) begin
-      if (!rst_ni) pipe_q <= '0;
-      else pipe_q <= fill_result;
-    end
-  end else begin : gen_pipe
-    always_ff @(posedge clk_i or negedge rst_ni) begin
-      if (!rst_ni) pipe_q <= '0;
-      else pipe_q <= {pipe_q[(RecipLatency-1)*PipeBits-1:0], fill_result};
-    end
+  always_ff @(posedge clk_i) begin
+    q_line_q <= q_line_d;
+    u_line_q <= u_line_d;
+    v_line_q <= v_line_d;
   end
 
-  assign {write_valid_o, write_addr_o, write_entry_o} =
-      pipe_q[(RecipLatency-1)*PipeBits +: PipeBits];
+  // Issue: q <= 0 raises depth_range and uses q = 1; e = bitlen(q) - 1; the
+  // mantissa keeps RecipBits fraction bits, truncated.
+  localparam int TagBits = AddrBits + 1 + ExponentBits + 2 * FillUvBits;
+  logic                       depth_out;
+  logic signed [FillQBits-1:0] q_positive;
+  logic [ExponentBits-1:0]    exponent;
+  logic [RecipBits:0]         mantissa;
+  logic [TagBits-1:0]         issue_tag, result_tag;
+  logic                       result_valid;
+  logic [RecipBits:0]         recip;
+
+  always_comb begin
+    depth_out = q_line_q <= 0;
+    q_positive = depth_out ? FillQBits'(1) : q_line_q;
+    exponent = '0;
+    for (int i = 0; i < FillQBits - 1; i++) if (q_positive[i]) exponent = ExponentBits'(i);
+    if (32'(exponent) >= RecipBits) mantissa = (RecipBits+1)'(q_positive >> (32'(exponent) - RecipBits));
+    else mantissa = (RecipBits+1)'(q_positive << (RecipBits - 32'(exponent)));
+    issue_tag = {fill_addr_i, depth_out, exponent, u_line_q, v_line_q};
+  end
+
+  reciprocal #(
+    .RecipBits(RecipBits), .Latency(`CD_RECIP_LATENCY), .TagBits(TagBits)
+  ) u_reciprocal (
+    .clk_i, .rst_ni,
+    .valid_i   (fill_valid_i),
+    .mantissa_i(mantissa),
+    .tag_i     (issue_tag),
+    .valid_o   (result_valid),
+    .recip_o   (recip),
+    .tag_o     (result_tag)
+  );
+
+  // Result: T = U_k R, S = SU R, read with RecipBits + e + uv_in_frac fraction
+  // bits and narrowed to their formats (round to nearest, saturate, flag).
+  logic [AddrBits-1:0]           result_addr;
+  logic                          result_depth_out;
+  logic [ExponentBits-1:0]       result_exponent;
+  logic signed [FillUvBits-1:0]  result_u, result_v;
+  logic signed [ProductTBits-1:0] product_tu, product_tv;
+  logic signed [ProductSBits-1:0] product_su, product_sv;
+  logic signed [ProductShiftBits-1:0] shift_t, shift_s;
+  logic signed [TBits-1:0]       t_u, t_v;
+  logic signed [SBits-1:0]       s_u, s_v;
+  logic [3:0]                    entry_saturated;
+
+  always_comb begin
+    {result_addr, result_depth_out, result_exponent, result_u, result_v} = result_tag;
+    product_tu = ProductTBits'(result_u) * ProductTBits'($signed({1'b0, recip}));
+    product_tv = ProductTBits'(result_v) * ProductTBits'($signed({1'b0, recip}));
+    product_su = ProductSBits'(step_u_q) * ProductSBits'($signed({1'b0, recip}));
+    product_sv = ProductSBits'(step_v_q) * ProductSBits'($signed({1'b0, recip}));
+    shift_t = ProductShiftBits'($signed({1'b0, result_exponent})) + ProductShiftBits'(RecipBits + UvInFrac - TFrac);
+    shift_s = ProductShiftBits'($signed({1'b0, result_exponent})) + ProductShiftBits'(RecipBits + UvInFrac - SFrac);
+  end
+
+  shift_round #(.InBits(ProductTBits), .OutBits(TBits), .ShiftBits(ProductShiftBits), .MaxLeft(MaxTLeft))
+    u_narrow_tu (.in_i(product_tu), .shift_i(shift_t), .out_o(t_u), .saturated_o(entry_saturated[0]));
+  shift_round #(.InBits(ProductTBits), .OutBits(TBits), .ShiftBits(ProductShiftBits), .MaxLeft(MaxTLeft))
+    u_narrow_tv (.in_i(product_tv), .shift_i(shift_t), .out_o(t_v), .saturated_o(entry_saturated[1]));
+  shift_round #(.InBits(ProductSBits), .OutBits(SBits), .ShiftBits(ProductShiftBits), .MaxLeft(MaxSLeft))
+    u_narrow_su (.in_i(product_su), .shift_i(shift_s), .out_o(s_u), .saturated_o(entry_saturated[2]));
+  shift_round #(.InBits(ProductSBits), .OutBits(SBits), .ShiftBits(ProductShiftBits), .MaxLeft(MaxSLeft))
+    u_narrow_sv (.in_i(product_sv), .shift_i(shift_s), .out_o(s_v), .saturated_o(entry_saturated[3]));
+
+  always_comb begin
+    write_entry_o = '0;
+    write_entry_o[`CD_WORD_TU_LSB +: TBits] = t_u;
+    write_entry_o[`CD_WORD_TV_LSB +: TBits] = t_v;
+    write_entry_o[`CD_WORD_SU_LSB +: SBits] = s_u;
+    write_entry_o[`CD_WORD_SV_LSB +: SBits] = s_v;
+    write_entry_o[`CD_WORD_SATURATED_BIT] = |entry_saturated;
+    write_entry_o[`CD_WORD_DEPTH_RANGE_BIT] = result_depth_out;
+  end
+  assign write_valid_o = result_valid;
+  assign write_addr_o = result_addr;
+
+`ifndef SYNTHESIS
+  // Derived widths hold: the normalised planes never leave their formats, and
+  // the dividers' quotients fit (model/derived_widths.cpp checks the same bounds).
+  always_ff @(posedge clk_i) begin
+    if (stage_e && !empty_q) begin
+      assert (normalise_saturated == '0)
+        else $error("setup_engine: a normalised plane value left its derived width (%b)", normalise_saturated);
+      for (int i = 0; i < 3; i++) begin
+        assert (edge_free_q[i] == 0 || (!bound_overflow[i] && !slope_overflow[i]))
+          else $error("setup_engine: edge %0d divider quotient overflow", i);
+      end
+    end
+  end
+`endif
 
 endmodule
+
+`default_nettype wire

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <tuple>
 
+#include "derived_widths.hpp"
 #include "test_support.hpp"
 
 namespace cdsim {
@@ -140,16 +141,20 @@ TEST(UnitBehaviour, CyclesOfAHandWorkedTriangle) {
   // Right triangle (0,0) (8,0) (0,8) in pixels, constant w: box 8x8 pixels,
   // g = 0, x-major, 8 pixel lines (rows 0..7). Centres with i + j <= 6 are
   // covered (i + j = 7 lies on the hypotenuse, which is neither top nor left): 28.
-  const Widths w;  // setup 12, reciprocal latency 4
+  const Widths w;  // reciprocal latency 4
+  // Setup: 4 stages, then the serial dividers: a span end has 43 quotient bits
+  // at subpixel_bits 8, 4 bits per cycle (docs/rtl.md, "Setup engine").
+  const int64_t kSetup = 4 + (43 + 3) / 4;
+  ASSERT_EQ(kSetup, derive(w).setup_cycles);
   const ScreenTriangle s = testing::screen_triangle(
       {{{{0, 0, 2.0, 0, 0}}, {{8, 0, 2.0, 64, 0}}, {{0, 8, 2.0, 0, 64}}}});
   const UnitTriangle t = to_unit(s, w, 0);
   const std::pair<const char*, int64_t> expected[] = {
-      {"cd-none", 12 + (8 + 4) + 8 + 28},
-      {"cd-linear", 12 + (10 + 4) + 8 + 28},
-      {"cd-dense2", 12 + (15 + 4) + 8 + 28},        // lines 0..14 at half-pixel spacing
-      {"cd-dense2-linear", 12 + (17 + 4) + 8 + 28},
-      {"divide", 12 + 8 + 28 + 4},
+      {"cd-none", kSetup + (8 + 4) + 8 + 28},
+      {"cd-linear", kSetup + (10 + 4) + 8 + 28},
+      {"cd-dense2", kSetup + (15 + 4) + 8 + 28},        // lines 0..14 at half-pixel spacing
+      {"cd-dense2-linear", kSetup + (17 + 4) + 8 + 28},
+      {"divide", kSetup + 8 + 28 + 4},
   };
   for (const auto& [name, cycles] : expected) {
     TriangleRecord r;
@@ -168,7 +173,7 @@ TEST(UnitBehaviour, ZeroAreaAndEmptyBoxCostOnlySetup) {
   for (const auto& s : {line, between_centres}) {
     TriangleRecord r;
     EXPECT_TRUE(testing::run_unit(find_design("cd-linear"), w, 32, 32, to_unit(s, w, 0), &r).empty());
-    EXPECT_EQ(r.cycles, w.setup_cycles);
+    EXPECT_EQ(r.cycles, derive(w).setup_cycles);
   }
 }
 
@@ -208,22 +213,23 @@ TEST(UnitBehaviour, KimAndAffineCyclesOfAHandWorkedTriangle) {
   // The right triangle of CyclesOfAHandWorkedTriangle, u = 8x and v = 8y texels:
   // columns 0..6 hold 7, 6, ..., 1 covered pixels and column 7 none; down a
   // column I_u is constant and I_v moves 8 texels per pixel.
-  Widths w;  // setup 12, out_int 16 (span division), kim_frac 8, recip_latency 4
+  Widths w;  // out_int 16 (span division), kim_frac 8, recip_latency 4
+  const int64_t kSetup = 4 + (43 + 3) / 4;  // as in CyclesOfAHandWorkedTriangle
   const ScreenTriangle s = testing::screen_triangle(
       {{{{0, 0, 2.0, 0, 0}}, {{8, 0, 2.0, 64, 0}}, {{0, 8, 2.0, 0, 64}}}});
   const UnitTriangle t = to_unit(s, w, 0);
   const int64_t columns = 8, spans = 7, pixels = 28, span_division = 16;
   // kim-iter: every pixel takes max(integer steps, 8 fraction cycles) = 8.
-  const int64_t kim_iter = 12 + columns + spans * span_division + pixels * 8;
+  const int64_t kim_iter = kSetup + columns + spans * span_division + pixels * 8;
   // kim-pipe: the first pixel of a span 1 cycle, each later one 8 unit steps; drain 8.
   int64_t pipe_pixels = 0;
   for (int64_t n = 1; n <= 7; ++n) pipe_pixels += 1 + 8 * (n - 1);
-  const int64_t kim_pipe = 12 + columns + spans * span_division + pipe_pixels + 8;
+  const int64_t kim_pipe = kSetup + columns + spans * span_division + pipe_pixels + 8;
   const std::pair<const char*, int64_t> expected[] = {
       {"kim-iter", kim_iter}, {"kim-pipe", kim_pipe},
-      {"affine", 12 + columns + pixels},
-      {"affine-sub8", 12 + columns + pixels + spans * 4},  // one segment per span: no stall
-      {"affine-sub16", 12 + columns + pixels + spans * 4},
+      {"affine", kSetup + columns + pixels},
+      {"affine-sub8", kSetup + columns + pixels + spans * 4},  // one segment per span: no stall
+      {"affine-sub16", kSetup + columns + pixels + spans * 4},
   };
   for (const auto& [name, cycles] : expected) {
     TriangleRecord r;
@@ -237,7 +243,7 @@ TEST(UnitBehaviour, KimAndAffineCyclesOfAHandWorkedTriangle) {
   for (int64_t n = 1; n <= 7; ++n) unrolled += 1 + 2 * (n - 1);
   TriangleRecord r;
   testing::run_unit(find_design("kim-pipe"), w, 64, 64, t, &r);
-  EXPECT_EQ(r.cycles, 12 + columns + spans * span_division + unrolled + 8);
+  EXPECT_EQ(r.cycles, kSetup + columns + spans * span_division + unrolled + 8);
 }
 
 TEST(UnitBehaviour, AffineSubdivisionStallsWhenSegmentsAreShorterThanTheDivider) {
@@ -245,6 +251,7 @@ TEST(UnitBehaviour, AffineSubdivisionStallsWhenSegmentsAreShorterThanTheDivider)
   // 8, each segment after the first stalls 12 - 8 = 4 cycles.
   Widths w;
   w.recip_latency = 12;
+  const int64_t kSetup = 4 + (43 + 3) / 4;  // as in CyclesOfAHandWorkedTriangle
   const ScreenTriangle s = testing::screen_triangle(
       {{{{0.2, 0.0, 1.0, 0, 0}}, {{0.8, 0.0, 1.0, 0, 0}}, {{0.5, 40.0, 1.0, 0, 40}}}});
   TriangleRecord r;
@@ -257,7 +264,7 @@ TEST(UnitBehaviour, AffineSubdivisionStallsWhenSegmentsAreShorterThanTheDivider)
   const int64_t last_run = (pixels - 1) - 8 * (segments - 1);
   ASSERT_GE(segments, 3);
   const int64_t stalls = (segments - 2) * (12 - 8) + (12 - last_run);
-  EXPECT_EQ(r.cycles, 12 + 1 + pixels + 12 + stalls);
+  EXPECT_EQ(r.cycles, kSetup + 1 + pixels + 12 + stalls);
 }
 
 }  // namespace

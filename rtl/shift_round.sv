@@ -1,0 +1,51 @@
+// Narrowing by a variable power of two: out = round(in * 2^-shift), to nearest
+// with ties toward +inf (SC_RND), then saturated to OutBits with saturated_o
+// raised. A negative shift multiplies exactly by 2^-shift (up to MaxLeft
+// places). Twin of fx::shift_round followed by fx::fit with Overflow::Saturate
+// (model/fixed.hpp). Combinational.
+//
+// floor((x + 2^(s-1)) / 2^s) = 0 for every s >= InBits, since |x| < 2^(InBits-1):
+// the right shift only needs InBits + 1 bits of headroom.
+`default_nettype none
+
+module shift_round #(
+  parameter int InBits    = 16,
+  parameter int OutBits   = 8,
+  parameter int ShiftBits = 8,   // signed shift amount
+  parameter int MaxLeft   = 0    // the largest left shift (-shift) that can occur
+) (
+  input  logic signed [InBits-1:0]    in_i,
+  input  logic signed [ShiftBits-1:0] shift_i,
+  output logic signed [OutBits-1:0]   out_o,
+  output logic                        saturated_o
+);
+
+  localparam int LeftBits = InBits + MaxLeft;
+  localparam int ValueBits = LeftBits > InBits + 1 ? LeftBits : InBits + 1;
+  localparam int WideBits = (ValueBits > OutBits ? ValueBits : OutBits) + 1;
+  localparam logic signed [WideBits-1:0] OutMax = (WideBits'(1) <<< (OutBits - 1)) - WideBits'(1);
+  localparam logic signed [WideBits-1:0] OutMin = -(WideBits'(1) <<< (OutBits - 1));
+
+  logic signed [WideBits-1:0] wide;
+  logic signed [WideBits-1:0] half;
+  logic signed [31:0]         shift;
+
+  always_comb begin
+    shift = 32'(shift_i);
+    wide = WideBits'(in_i);
+    half = '0;
+    if (shift <= 0) begin
+      wide = wide <<< (-shift);
+    end else if (shift >= 32'(InBits)) begin
+      wide = '0;
+    end else begin
+      half = WideBits'(1) <<< (shift - 1);
+      wide = (wide + half) >>> shift;
+    end
+    saturated_o = wide > OutMax || wide < OutMin;
+    out_o = OutBits'(saturated_o ? (wide > OutMax ? OutMax : OutMin) : wide);
+  end
+
+endmodule
+
+`default_nettype wire
