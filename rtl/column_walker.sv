@@ -77,8 +77,8 @@ module column_walker (
 
   always_comb begin
     exact_d = exact_q;
-    bound_d = bound_q;
-    rem_d = rem_q;
+    for (int i = 0; i < 3; i++) bound_d[i] = bound_q[i];
+    for (int i = 0; i < 3; i++) rem_d[i] = rem_q[i];
     rem_sum = '0;
     if (init_i) begin
       exact_d = '0;
@@ -109,8 +109,8 @@ module column_walker (
       end
     end else begin
       exact_q <= exact_d;
-      bound_q <= bound_d;
-      rem_q <= rem_d;
+      for (int i = 0; i < 3; i++) bound_q[i] <= bound_d[i];
+      for (int i = 0; i < 3; i++) rem_q[i] <= rem_d[i];
     end
   end
 
@@ -151,7 +151,7 @@ module column_walker (
       endcase
     end
     band_first = (LineBits+1)'($signed({1'b0, minor_lo_i})) -
-                 ((-(LineBits+1)'(band_lo_i) - (LineBits+1)'(line_shift_o)) >>> density_log2_i);
+                 ((-((LineBits+1)'(band_lo_i)) - (LineBits+1)'(line_shift_o)) >>> density_log2_i);
     band_last = (LineBits+1)'($signed({1'b0, minor_lo_i})) +
                 (((LineBits+1)'(band_hi_i) + (LineBits+1)'(line_shift_o)) >>> density_log2_i);
     if (SpanBits'(band_first) > span_lo) span_lo = SpanBits'(band_first);

@@ -63,28 +63,37 @@ module correction_adder (
   logic                        saturated_u, saturated_v;
 
   always_comb begin
-    own_u = line_value(own_entry_i[`CD_WORD_TU_LSB +: TBits], own_entry_i[`CD_WORD_SU_LSB +: SBits], offset_i);
-    own_v = line_value(own_entry_i[`CD_WORD_TV_LSB +: TBits], own_entry_i[`CD_WORD_SV_LSB +: SBits], offset_i);
-    other_u = line_value(neighbour_entry_i[`CD_WORD_TU_LSB +: TBits],
-                         neighbour_entry_i[`CD_WORD_SU_LSB +: SBits], offset_i);
-    other_v = line_value(neighbour_entry_i[`CD_WORD_TV_LSB +: TBits],
-                         neighbour_entry_i[`CD_WORD_SV_LSB +: SBits], offset_i);
-    // A flagged neighbour is never used: it would spread a bad value.
-    neighbour_usable = correct_i && !neighbour_entry_i[`CD_WORD_SATURATED_BIT] &&
-                       !neighbour_entry_i[`CD_WORD_DEPTH_RANGE_BIT];
-    sum_u = SumBits'(own_u);
-    sum_v = SumBits'(own_v);
-    if (neighbour_usable) begin
-      sum_u = corrected(own_u, other_u, weight_i);
-      sum_v = corrected(own_v, other_v, weight_i);
+    own_u = '0;
+    own_v = '0;
+    other_u = '0;
+    other_v = '0;
+    neighbour_usable = 1'b0;
+    sum_u = '0;
+    sum_v = '0;
+    if (valid_i) begin
+      own_u = line_value(own_entry_i[`CD_WORD_TU_LSB +: TBits], own_entry_i[`CD_WORD_SU_LSB +: SBits], offset_i);
+      own_v = line_value(own_entry_i[`CD_WORD_TV_LSB +: TBits], own_entry_i[`CD_WORD_SV_LSB +: SBits], offset_i);
+      other_u = line_value(neighbour_entry_i[`CD_WORD_TU_LSB +: TBits],
+                           neighbour_entry_i[`CD_WORD_SU_LSB +: SBits], offset_i);
+      other_v = line_value(neighbour_entry_i[`CD_WORD_TV_LSB +: TBits],
+                           neighbour_entry_i[`CD_WORD_SV_LSB +: SBits], offset_i);
+      // A flagged neighbour is never used: it would spread a bad value.
+      neighbour_usable = correct_i && !neighbour_entry_i[`CD_WORD_SATURATED_BIT] &&
+                         !neighbour_entry_i[`CD_WORD_DEPTH_RANGE_BIT];
+      sum_u = SumBits'(own_u);
+      sum_v = SumBits'(own_v);
+      if (neighbour_usable) begin
+        sum_u = corrected(own_u, other_u, weight_i);
+        sum_v = corrected(own_v, other_v, weight_i);
+      end
     end
   end
 
   // To the output format: round to nearest (ties up), saturate, flag.
   shift_round #(.InBits(SumBits), .OutBits(OutBits), .ShiftBits(8), .MaxLeft(OutLeft))
-    u_narrow_u (.in_i(sum_u), .shift_i(8'(OutShift)), .out_o(u_o), .saturated_o(saturated_u));
+    u_narrow_u (.enable_i(valid_i), .in_i(sum_u), .shift_i(8'(OutShift)), .out_o(u_o), .saturated_o(saturated_u));
   shift_round #(.InBits(SumBits), .OutBits(OutBits), .ShiftBits(8), .MaxLeft(OutLeft))
-    u_narrow_v (.in_i(sum_v), .shift_i(8'(OutShift)), .out_o(v_o), .saturated_o(saturated_v));
+    u_narrow_v (.enable_i(valid_i), .in_i(sum_v), .shift_i(8'(OutShift)), .out_o(v_o), .saturated_o(saturated_v));
 
   always_comb begin
     flags_o = '0;

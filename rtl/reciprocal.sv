@@ -1,14 +1,15 @@
 // Reciprocal: R = floor(2^(2 RecipBits) / M) for a normalised mantissa
-// 2^RecipBits <= M < 2^(RecipBits+1), exact, so 2^(RecipBits-1) < R <= 2^RecipBits
-// (RecipBits+1 bits; R = 2^RecipBits only for M = 2^RecipBits).
+// 2^RecipBits <= M < 2^(RecipBits+1), exact, so 2^(RecipBits-1) <= R <= 2^RecipBits
+// (RecipBits+1 bits; R = 2^RecipBits only for M = 2^RecipBits, and
+// R = 2^(RecipBits-1) only for M = 2^(RecipBits+1) - 1).
 //
 // A pipelined restoring divider of exactly Latency register stages and one
 // operand a cycle, with no stall:
 //  - an operand presented with valid_i in cycle t is on valid_o, recip_o and
 //    tag_o in cycle t + Latency (Latency rising edges later), and for that one
 //    cycle only; tag_o is the tag_i it came with;
-//  - valid_o is 0 in every other cycle, and from an asynchronous reset
-//    (rst_ni low) until the first operand has gone through; recip_o and tag_o
+//  - valid_o is 0 in every other cycle; an asynchronous reset (rst_ni low)
+//    clears it at once and drops the operands in flight; recip_o and tag_o
 //    are unspecified while valid_o is 0 (data registers have no reset);
 //  - mantissa_i[RecipBits] is taken to be 1 and not looked at.
 // Stage s resolves quotient bits RecipBits - s*StageBits downwards, StageBits =
@@ -51,9 +52,7 @@ module reciprocal #(
     int quotient;
     begin
       quotient = 0;
-      for (int i = 0; i < 64; i++) begin
-        if (quotient * den < num) quotient = quotient + 1;
-      end
+      while (quotient * den < num) quotient = quotient + 1;
       ceil_div = quotient;
     end
   endfunction
@@ -77,9 +76,7 @@ module reciprocal #(
     int offset;
     begin
       offset = 0;
-      for (int k = 0; k < 64; k++) begin
-        if (k < stage) offset = offset + resolved_after(k);
-      end
+      for (int k = 0; k < stage; k++) offset = offset + resolved_after(k);
       quo_offset = offset;
     end
   endfunction
@@ -88,17 +85,18 @@ module reciprocal #(
 
   // Slot s of each chain is the input of stage s (slot 0: the module inputs).
   // The remainder and mantissa travel only as far as a stage still divides.
-  logic [Latency:0]                     valid_chain;
-  logic [(Latency+1)*TagBits-1:0]       tag_chain;
-  logic [ComputeStages*QuoBits-1:0]     rem_chain;
-  logic [ComputeStages*RecipBits-1:0]   mantissa_chain;
-  // Slot s: stage s's quotient register, resolved_after(s) bits.
-  logic [QuoChainBits-1:0]              quo_chain;
+  logic [Latency:0]                   valid_chain;
+  logic [(Latency+1)*TagBits-1:0]     tag_chain;
+  logic [ComputeStages*QuoBits-1:0]   rem_chain;
+  logic [ComputeStages*RecipBits-1:0] mantissa_chain;
+  // Slot s: stage s's quotient register, resolved_after(s) bits (the quotient
+  // so far, most significant bit first).
+  logic [QuoChainBits-1:0]            quo_chain;
 
-  assign valid_chain[0]                  = valid_i;
-  assign tag_chain[0 +: TagBits]         = tag_i;
-  assign rem_chain[0 +: QuoBits]         = {2'b01, {(RecipBits - 1){1'b0}}};
-  assign mantissa_chain[0 +: RecipBits]  = mantissa_i[RecipBits-1:0];
+  assign valid_chain[0]                 = valid_i;
+  assign tag_chain[0 +: TagBits]        = tag_i;
+  assign rem_chain[0 +: QuoBits]        = {2'b01, {(RecipBits - 1){1'b0}}};  // 2^(RecipBits-1)
+  assign mantissa_chain[0 +: RecipBits] = mantissa_i[RecipBits-1:0];
 
   logic unused_mantissa_msb;
   assign unused_mantissa_msb = mantissa_i[RecipBits];
@@ -125,11 +123,11 @@ module reciprocal #(
       quo_q <= quo_d;
     end
 
-    assign valid_chain[s+1]                  = valid_q;
+    assign valid_chain[s+1]                    = valid_q;
     assign tag_chain[(s+1)*TagBits +: TagBits] = tag_q;
     assign quo_chain[quo_offset(s) +: BitsOut] = quo_q;
 
-    if (NewBits == 0) begin : gen_plain
+    if (NewBits == 0) begin : gen_plain  // every bit resolved: a plain register
       assign quo_d = quo_chain[quo_offset(s-1) +: BitsOut];
     end else begin : gen_divide
       logic [RecipBits:0]   rem_in, rem_step;
@@ -140,6 +138,7 @@ module reciprocal #(
       assign rem_in      = rem_chain[s*QuoBits +: QuoBits];
       assign mantissa_in = mantissa_chain[s*RecipBits +: RecipBits];
 
+      // NewBits chained restoring steps.
       always_comb begin
         rem_step = rem_in;
         for (int j = 0; j < NewBits; j++) begin
@@ -163,8 +162,8 @@ module reciprocal #(
           rem_q      <= rem_step;
           mantissa_q <= mantissa_in;
         end
-        assign rem_chain[(s+1)*QuoBits +: QuoBits]            = rem_q;
-        assign mantissa_chain[(s+1)*RecipBits +: RecipBits]   = mantissa_q;
+        assign rem_chain[(s+1)*QuoBits +: QuoBits]          = rem_q;
+        assign mantissa_chain[(s+1)*RecipBits +: RecipBits] = mantissa_q;
       end
     end
   end

@@ -18,10 +18,11 @@
 //    overflow_o = 0; quotient_o and remainder_o are unspecified until a
 //    division has finished.
 //
-// Each cycle runs BitsPerCycle chained restoring steps; the first runs
-// Cycles*BitsPerCycle - QuoBits of them on leading numerator bits whose
-// quotient bits are zero when there is no overflow, so it resolves fewer. A
-// step shifts the next numerator bit into the partial remainder r < D:
+// Each cycle runs BitsPerCycle chained restoring steps. The first cycle's
+// steps start Cycles*BitsPerCycle - QuoBits numerator bits above the quotient
+// (on bits whose quotient bits are zero when there is no overflow), so it
+// resolves only the rest. With NumBits <= QuoBits there is no overflow and
+// overflow_o is tied to 0. A step shifts the next numerator bit into the partial remainder r < D:
 // t = 2r + bit < 2D; quotient bit = (t >= D); r = t - D if so, else t. t - D
 // lies in (-D, D), so DenBits+1 bits hold it and its top bit is the borrow.
 // State: the partial remainder, a quotient register that holds the numerator
@@ -55,9 +56,7 @@ module serial_divider #(
     int quotient;
     begin
       quotient = 0;
-      for (int i = 0; i < 4096; i++) begin
-        if (quotient * den < num) quotient = quotient + 1;
-      end
+      while (quotient * den < num) quotient = quotient + 1;
       ceil_div = quotient;
     end
   endfunction

@@ -202,69 +202,104 @@ module setup_engine #(
   localparam logic signed [CoordBits:0] HalfPx = (CoordBits+1)'(1) <<< (SubpixelBits - 1);
 
   always_comb begin
-    dx1 = DiffBits'(x_q[1]) - DiffBits'(x_q[0]);
-    dy1 = DiffBits'(y_q[1]) - DiffBits'(y_q[0]);
-    dx2 = DiffBits'(x_q[2]) - DiffBits'(x_q[0]);
-    dy2 = DiffBits'(y_q[2]) - DiffBits'(y_q[0]);
-    det = DetBits'(dx1) * DetBits'(dy2) - DetBits'(dx2) * DetBits'(dy1);
-    for (int i = 0; i < 3; i++) begin
-      edge_dx[i] = DiffBits'(x_q[(i + 2) % 3]) - DiffBits'(x_q[(i + 1) % 3]);
-      edge_dy[i] = DiffBits'(y_q[(i + 2) % 3]) - DiffBits'(y_q[(i + 1) % 3]);
-      edge_a_d[i] = det < 0 ? edge_dy[i] : -edge_dy[i];
-      edge_b_d[i] = det < 0 ? -edge_dx[i] : edge_dx[i];
-      edge_c_d[i] = EdgeCBits'(edge_dy[i]) * EdgeCBits'(x_q[(i + 1) % 3]) -
-                    EdgeCBits'(edge_dx[i]) * EdgeCBits'(y_q[(i + 1) % 3]);
-      if (det < 0) edge_c_d[i] = -edge_c_d[i];
-      edge_threshold_d[i] = !((edge_a_d[i] == 0 && edge_b_d[i] > 0) || edge_a_d[i] > 0);
-    end
+    dx1 = '0;
+    dy1 = '0;
+    dx2 = '0;
+    dy2 = '0;
+    det = '0;
+    for (int i = 0; i < 3; i++) edge_dx[i] = '0;
+    for (int i = 0; i < 3; i++) edge_dy[i] = '0;
+    for (int i = 0; i < 3; i++) edge_a_d[i] = '0;
+    for (int i = 0; i < 3; i++) edge_b_d[i] = '0;
+    for (int i = 0; i < 3; i++) edge_c_d[i] = '0;
+    edge_threshold_d = '0;
+    min_x = '0;
+    max_x = '0;
+    min_y = '0;
+    max_y = '0;
+    x_lo = '0;
+    x_hi = '0;
+    y_lo = '0;
+    y_hi = '0;
+    empty_d = '0;
+    box_x_lo_d = '0;
+    box_x_hi_d = '0;
+    box_y_lo_d = '0;
+    box_y_hi_d = '0;
+    ref_x_d = '0;
+    ref_y_d = '0;
+    max_exponent = '0;
+    depth_range_d = '0;
+    for (int i = 0; i < 3; i++) q_shift[i] = '0;
+    for (int i = 0; i < 3; i++) q_wide[i] = '0;
+    for (int i = 0; i < 3; i++) q_vertex_d[i] = '0;
+    for (int i = 0; i < 3; i++) u_attr_d[i] = '0;
+    for (int i = 0; i < 3; i++) v_attr_d[i] = '0;
+    if (stage_a) begin
+      dx1 = DiffBits'(x_q[1]) - DiffBits'(x_q[0]);
+      dy1 = DiffBits'(y_q[1]) - DiffBits'(y_q[0]);
+      dx2 = DiffBits'(x_q[2]) - DiffBits'(x_q[0]);
+      dy2 = DiffBits'(y_q[2]) - DiffBits'(y_q[0]);
+      det = DetBits'(dx1) * DetBits'(dy2) - DetBits'(dx2) * DetBits'(dy1);
+      for (int i = 0; i < 3; i++) begin
+        edge_dx[i] = DiffBits'(x_q[(i + 2) % 3]) - DiffBits'(x_q[(i + 1) % 3]);
+        edge_dy[i] = DiffBits'(y_q[(i + 2) % 3]) - DiffBits'(y_q[(i + 1) % 3]);
+        edge_a_d[i] = det < 0 ? edge_dy[i] : -edge_dy[i];
+        edge_b_d[i] = det < 0 ? -edge_dx[i] : edge_dx[i];
+        edge_c_d[i] = EdgeCBits'(edge_dy[i]) * EdgeCBits'(x_q[(i + 1) % 3]) -
+                      EdgeCBits'(edge_dx[i]) * EdgeCBits'(y_q[(i + 1) % 3]);
+        if (det < 0) edge_c_d[i] = -edge_c_d[i];
+        edge_threshold_d[i] = !((edge_a_d[i] == 0 && edge_b_d[i] > 0) || edge_a_d[i] > 0);
+      end
 
-    // Pixels whose centres the vertices' extent reaches, clipped to the viewport.
-    min_x = (CoordBits+1)'(x_q[0]);
-    max_x = min_x;
-    min_y = (CoordBits+1)'(y_q[0]);
-    max_y = min_y;
-    for (int i = 1; i < 3; i++) begin
-      if ((CoordBits+1)'(x_q[i]) < min_x) min_x = (CoordBits+1)'(x_q[i]);
-      if ((CoordBits+1)'(x_q[i]) > max_x) max_x = (CoordBits+1)'(x_q[i]);
-      if ((CoordBits+1)'(y_q[i]) < min_y) min_y = (CoordBits+1)'(y_q[i]);
-      if ((CoordBits+1)'(y_q[i]) > max_y) max_y = (CoordBits+1)'(y_q[i]);
-    end
-    // ceil((min - half) / one) and floor((max - half) / one): arithmetic shifts.
-    x_lo = (min_x - HalfPx + OnePx - 1) >>> SubpixelBits;
-    x_hi = (max_x - HalfPx) >>> SubpixelBits;
-    y_lo = (min_y - HalfPx + OnePx - 1) >>> SubpixelBits;
-    y_hi = (max_y - HalfPx) >>> SubpixelBits;
-    if (x_lo < 0) x_lo = '0;
-    if (y_lo < 0) y_lo = '0;
-    if (x_hi > (CoordBits+1)'($signed({1'b0, viewport_width_q})) - (CoordBits+1)'(1))
-      x_hi = (CoordBits+1)'($signed({1'b0, viewport_width_q})) - (CoordBits+1)'(1);
-    if (y_hi > (CoordBits+1)'($signed({1'b0, viewport_height_q})) - (CoordBits+1)'(1))
-      y_hi = (CoordBits+1)'($signed({1'b0, viewport_height_q})) - (CoordBits+1)'(1);
-    empty_d = det == 0 || x_lo > x_hi || y_lo > y_hi;
-    box_x_lo_d = PixelBits'(x_lo);
-    box_x_hi_d = PixelBits'(x_hi);
-    box_y_lo_d = PixelBits'(y_lo);
-    box_y_hi_d = PixelBits'(y_hi);
-    // The reference pixel centre (the box's top-left) relative to vertex 0.
-    ref_x_d = (DiffBits'($signed({1'b0, box_x_lo_d})) <<< SubpixelBits) + DiffBits'(HalfPx) -
-              DiffBits'(x_q[0]);
-    ref_y_d = (DiffBits'($signed({1'b0, box_y_lo_d})) <<< SubpixelBits) + DiffBits'(HalfPx) -
-              DiffBits'(y_q[0]);
+      // Pixels whose centres the vertices' extent reaches, clipped to the viewport.
+      min_x = (CoordBits+1)'(x_q[0]);
+      max_x = min_x;
+      min_y = (CoordBits+1)'(y_q[0]);
+      max_y = min_y;
+      for (int i = 1; i < 3; i++) begin
+        if ((CoordBits+1)'(x_q[i]) < min_x) min_x = (CoordBits+1)'(x_q[i]);
+        if ((CoordBits+1)'(x_q[i]) > max_x) max_x = (CoordBits+1)'(x_q[i]);
+        if ((CoordBits+1)'(y_q[i]) < min_y) min_y = (CoordBits+1)'(y_q[i]);
+        if ((CoordBits+1)'(y_q[i]) > max_y) max_y = (CoordBits+1)'(y_q[i]);
+      end
+      // ceil((min - half) / one) and floor((max - half) / one): arithmetic shifts.
+      x_lo = (min_x - HalfPx + OnePx - 1) >>> SubpixelBits;
+      x_hi = (max_x - HalfPx) >>> SubpixelBits;
+      y_lo = (min_y - HalfPx + OnePx - 1) >>> SubpixelBits;
+      y_hi = (max_y - HalfPx) >>> SubpixelBits;
+      if (x_lo < 0) x_lo = '0;
+      if (y_lo < 0) y_lo = '0;
+      if (x_hi > (CoordBits+1)'($signed({1'b0, viewport_width_q})) - (CoordBits+1)'(1))
+        x_hi = (CoordBits+1)'($signed({1'b0, viewport_width_q})) - (CoordBits+1)'(1);
+      if (y_hi > (CoordBits+1)'($signed({1'b0, viewport_height_q})) - (CoordBits+1)'(1))
+        y_hi = (CoordBits+1)'($signed({1'b0, viewport_height_q})) - (CoordBits+1)'(1);
+      empty_d = det == 0 || x_lo > x_hi || y_lo > y_hi;
+      box_x_lo_d = PixelBits'(x_lo);
+      box_x_hi_d = PixelBits'(x_hi);
+      box_y_lo_d = PixelBits'(y_lo);
+      box_y_hi_d = PixelBits'(y_hi);
+      // The reference pixel centre (the box's top-left) relative to vertex 0.
+      ref_x_d = (DiffBits'($signed({1'b0, box_x_lo_d})) <<< SubpixelBits) + DiffBits'(HalfPx) -
+                DiffBits'(x_q[0]);
+      ref_y_d = (DiffBits'($signed({1'b0, box_y_lo_d})) <<< SubpixelBits) + DiffBits'(HalfPx) -
+                DiffBits'(y_q[0]);
 
-    // q_i = round(m_i 2^-(E - e_i + 24 - q_bits)); 0 once the shift passes 25.
-    max_exponent = qf_q[0][30:23];
-    for (int i = 1; i < 3; i++) if (qf_q[i][30:23] > max_exponent) max_exponent = qf_q[i][30:23];
-    depth_range_d = 1'b0;
-    for (int i = 0; i < 3; i++) begin
-      q_shift[i] = $signed({2'b00, max_exponent - qf_q[i][30:23]}) + 10'sd24 - 10'(QBits);
-      q_wide[i] = {10'd0, 1'b1, qf_q[i][22:0]};
-      if (q_shift[i] <= 0) q_wide[i] = q_wide[i] << (-q_shift[i]);
-      else if (q_shift[i] > 10'sd25) q_wide[i] = '0;
-      else q_wide[i] = (q_wide[i] + (34'd1 << (q_shift[i] - 10'sd1))) >> q_shift[i];
-      q_vertex_d[i] = QVertexBits'(q_wide[i]);
-      if (q_vertex_d[i] == '0) depth_range_d = 1'b1;
-      u_attr_d[i] = AttrUvBits'($signed({1'b0, q_vertex_d[i]})) * AttrUvBits'(u_q[i]);
-      v_attr_d[i] = AttrUvBits'($signed({1'b0, q_vertex_d[i]})) * AttrUvBits'(v_q[i]);
+      // q_i = round(m_i 2^-(E - e_i + 24 - q_bits)); 0 once the shift passes 25.
+      max_exponent = qf_q[0][30:23];
+      for (int i = 1; i < 3; i++) if (qf_q[i][30:23] > max_exponent) max_exponent = qf_q[i][30:23];
+      depth_range_d = 1'b0;
+      for (int i = 0; i < 3; i++) begin
+        q_shift[i] = $signed({2'b00, max_exponent - qf_q[i][30:23]}) + 10'sd24 - 10'(QBits);
+        q_wide[i] = {10'd0, 1'b1, qf_q[i][22:0]};
+        if (q_shift[i] <= 0) q_wide[i] = q_wide[i] << (-q_shift[i]);
+        else if (q_shift[i] > 10'sd25) q_wide[i] = '0;
+        else q_wide[i] = (q_wide[i] + (34'd1 << (q_shift[i] - 10'sd1))) >> q_shift[i];
+        q_vertex_d[i] = QVertexBits'(q_wide[i]);
+        if (q_vertex_d[i] == '0) depth_range_d = 1'b1;
+        u_attr_d[i] = AttrUvBits'($signed({1'b0, q_vertex_d[i]})) * AttrUvBits'(u_q[i]);
+        v_attr_d[i] = AttrUvBits'($signed({1'b0, q_vertex_d[i]})) * AttrUvBits'(v_q[i]);
+      end
     end
   end
 
@@ -289,9 +324,9 @@ module setup_engine #(
       dx2_q <= dx2;
       dy2_q <= dy2;
       det_q <= det;
-      edge_a_q <= edge_a_d;
-      edge_b_q <= edge_b_d;
-      edge_c_q <= edge_c_d;
+      for (int i = 0; i < 3; i++) edge_a_q[i] <= edge_a_d[i];
+      for (int i = 0; i < 3; i++) edge_b_q[i] <= edge_b_d[i];
+      for (int i = 0; i < 3; i++) edge_c_q[i] <= edge_c_d[i];
       edge_threshold_q <= edge_threshold_d;
       box_x_lo_q <= box_x_lo_d;
       box_x_hi_q <= box_x_hi_d;
@@ -299,9 +334,9 @@ module setup_engine #(
       box_y_hi_q <= box_y_hi_d;
       ref_x_q <= ref_x_d;
       ref_y_q <= ref_y_d;
-      q_vertex_q <= q_vertex_d;
-      u_attr_q <= u_attr_d;
-      v_attr_q <= v_attr_d;
+      for (int i = 0; i < 3; i++) q_vertex_q[i] <= q_vertex_d[i];
+      for (int i = 0; i < 3; i++) u_attr_q[i] <= u_attr_d[i];
+      for (int i = 0; i < 3; i++) v_attr_q[i] <= v_attr_d[i];
     end
   end
 
@@ -327,31 +362,48 @@ module setup_engine #(
   logic [PeakBits-1:0]          q_peak_d;
 
   always_comb begin
-    det_abs = det_q < 0 ? -det_q : det_q;
-    dq1 = (AttrQBits+1)'($signed({1'b0, q_vertex_q[1]})) - (AttrQBits+1)'($signed({1'b0, q_vertex_q[0]}));
-    dq2 = (AttrQBits+1)'($signed({1'b0, q_vertex_q[2]})) - (AttrQBits+1)'($signed({1'b0, q_vertex_q[0]}));
-    du1 = (AttrUvBits+1)'(u_attr_q[1]) - (AttrUvBits+1)'(u_attr_q[0]);
-    du2 = (AttrUvBits+1)'(u_attr_q[2]) - (AttrUvBits+1)'(u_attr_q[0]);
-    dv1 = (AttrUvBits+1)'(v_attr_q[1]) - (AttrUvBits+1)'(v_attr_q[0]);
-    dv2 = (AttrUvBits+1)'(v_attr_q[2]) - (AttrUvBits+1)'(v_attr_q[0]);
-    q_coef_x_d = CoefQBits'(dq1) * CoefQBits'(dy2_q) - CoefQBits'(dq2) * CoefQBits'(dy1_q);
-    q_coef_y_d = CoefQBits'(dq2) * CoefQBits'(dx1_q) - CoefQBits'(dq1) * CoefQBits'(dx2_q);
-    u_coef_x_d = CoefUvBits'(du1) * CoefUvBits'(dy2_q) - CoefUvBits'(du2) * CoefUvBits'(dy1_q);
-    u_coef_y_d = CoefUvBits'(du2) * CoefUvBits'(dx1_q) - CoefUvBits'(du1) * CoefUvBits'(dx2_q);
-    v_coef_x_d = CoefUvBits'(dv1) * CoefUvBits'(dy2_q) - CoefUvBits'(dv2) * CoefUvBits'(dy1_q);
-    v_coef_y_d = CoefUvBits'(dv2) * CoefUvBits'(dx1_q) - CoefUvBits'(dv1) * CoefUvBits'(dx2_q);
-    if (det_q < 0) begin
-      q_coef_x_d = -q_coef_x_d;
-      q_coef_y_d = -q_coef_y_d;
-      u_coef_x_d = -u_coef_x_d;
-      u_coef_y_d = -u_coef_y_d;
-      v_coef_x_d = -v_coef_x_d;
-      v_coef_y_d = -v_coef_y_d;
-    end
+    det_abs = '0;
+    dq1 = '0;
+    dq2 = '0;
+    du1 = '0;
+    du2 = '0;
+    dv1 = '0;
+    dv2 = '0;
+    q_coef_x_d = '0;
+    q_coef_y_d = '0;
+    u_coef_x_d = '0;
+    u_coef_y_d = '0;
+    v_coef_x_d = '0;
+    v_coef_y_d = '0;
     q_peak_d = '0;
-    for (int i = 0; i < 3; i++) begin
-      peak_candidate[i] = PeakBits'(q_vertex_q[i]) * PeakBits'(det_abs);
-      if (peak_candidate[i] > q_peak_d) q_peak_d = peak_candidate[i];
+    for (int i = 0; i < 3; i++) peak_candidate[i] = '0;
+    if (stage_b) begin
+      det_abs = det_q < 0 ? -det_q : det_q;
+      dq1 = (AttrQBits+1)'($signed({1'b0, q_vertex_q[1]})) - (AttrQBits+1)'($signed({1'b0, q_vertex_q[0]}));
+      dq2 = (AttrQBits+1)'($signed({1'b0, q_vertex_q[2]})) - (AttrQBits+1)'($signed({1'b0, q_vertex_q[0]}));
+      du1 = (AttrUvBits+1)'(u_attr_q[1]) - (AttrUvBits+1)'(u_attr_q[0]);
+      du2 = (AttrUvBits+1)'(u_attr_q[2]) - (AttrUvBits+1)'(u_attr_q[0]);
+      dv1 = (AttrUvBits+1)'(v_attr_q[1]) - (AttrUvBits+1)'(v_attr_q[0]);
+      dv2 = (AttrUvBits+1)'(v_attr_q[2]) - (AttrUvBits+1)'(v_attr_q[0]);
+      q_coef_x_d = CoefQBits'(dq1) * CoefQBits'(dy2_q) - CoefQBits'(dq2) * CoefQBits'(dy1_q);
+      q_coef_y_d = CoefQBits'(dq2) * CoefQBits'(dx1_q) - CoefQBits'(dq1) * CoefQBits'(dx2_q);
+      u_coef_x_d = CoefUvBits'(du1) * CoefUvBits'(dy2_q) - CoefUvBits'(du2) * CoefUvBits'(dy1_q);
+      u_coef_y_d = CoefUvBits'(du2) * CoefUvBits'(dx1_q) - CoefUvBits'(du1) * CoefUvBits'(dx2_q);
+      v_coef_x_d = CoefUvBits'(dv1) * CoefUvBits'(dy2_q) - CoefUvBits'(dv2) * CoefUvBits'(dy1_q);
+      v_coef_y_d = CoefUvBits'(dv2) * CoefUvBits'(dx1_q) - CoefUvBits'(dv1) * CoefUvBits'(dx2_q);
+      if (det_q < 0) begin
+        q_coef_x_d = -q_coef_x_d;
+        q_coef_y_d = -q_coef_y_d;
+        u_coef_x_d = -u_coef_x_d;
+        u_coef_y_d = -u_coef_y_d;
+        v_coef_x_d = -v_coef_x_d;
+        v_coef_y_d = -v_coef_y_d;
+      end
+      q_peak_d = '0;
+      for (int i = 0; i < 3; i++) begin
+        peak_candidate[i] = PeakBits'(q_vertex_q[i]) * PeakBits'(det_abs);
+        if (peak_candidate[i] > q_peak_d) q_peak_d = peak_candidate[i];
+      end
     end
   end
 
@@ -395,44 +447,65 @@ module setup_engine #(
   logic [PixelBits-1:0]             major_lo_c;
 
   always_comb begin
-    q_ref_d = ExactRefQBits'($signed({1'b0, q_vertex_q[0]})) * ExactRefQBits'(det_abs_q) +
-              ExactRefQBits'(q_coef_x_q) * ExactRefQBits'(ref_x_q) +
-              ExactRefQBits'(q_coef_y_q) * ExactRefQBits'(ref_y_q);
-    u_ref_d = ExactRefUvBits'(u_attr_q[0]) * ExactRefUvBits'(det_abs_q) +
-              ExactRefUvBits'(u_coef_x_q) * ExactRefUvBits'(ref_x_q) +
-              ExactRefUvBits'(u_coef_y_q) * ExactRefUvBits'(ref_y_q);
-    v_ref_d = ExactRefUvBits'(v_attr_q[0]) * ExactRefUvBits'(det_abs_q) +
-              ExactRefUvBits'(v_coef_x_q) * ExactRefUvBits'(ref_x_q) +
-              ExactRefUvBits'(v_coef_y_q) * ExactRefUvBits'(ref_y_q);
-    // Lines run along the axis in which q changes least.
-    x_major_d = (q_coef_x_q < 0 ? -q_coef_x_q : q_coef_x_q) <= (q_coef_y_q < 0 ? -q_coef_y_q : q_coef_y_q);
+    q_ref_d = '0;
+    u_ref_d = '0;
+    v_ref_d = '0;
+    x_major_d = '0;
     peak_length = '0;
-    for (int i = 0; i < PeakBits; i++) if (q_peak_q[i]) peak_length = 8'(i + 1);
-    shift_d = ShiftBits'($signed({1'b0, peak_length})) - ShiftBits'(PlaneBits);
+    shift_d = '0;
+    q_major = '0;
+    q_minor = '0;
+    g_numerator = '0;
+    g_div_num = '0;
+    g_div_den = '0;
+    major_lo_c = '0;
+    for (int i = 0; i < 3; i++) edge_fixed[i] = '0;
+    for (int i = 0; i < 3; i++) edge_free[i] = '0;
+    for (int i = 0; i < 3; i++) edge_free_abs[i] = '0;
+    for (int i = 0; i < 3; i++) edge_fixed_abs[i] = '0;
+    for (int i = 0; i < 3; i++) edge_n[i] = '0;
+    for (int i = 0; i < 3; i++) edge_n_high[i] = '0;
+    for (int i = 0; i < 3; i++) edge_n_high_abs[i] = '0;
+    if (stage_c) begin
+      q_ref_d = ExactRefQBits'($signed({1'b0, q_vertex_q[0]})) * ExactRefQBits'(det_abs_q) +
+                ExactRefQBits'(q_coef_x_q) * ExactRefQBits'(ref_x_q) +
+                ExactRefQBits'(q_coef_y_q) * ExactRefQBits'(ref_y_q);
+      u_ref_d = ExactRefUvBits'(u_attr_q[0]) * ExactRefUvBits'(det_abs_q) +
+                ExactRefUvBits'(u_coef_x_q) * ExactRefUvBits'(ref_x_q) +
+                ExactRefUvBits'(u_coef_y_q) * ExactRefUvBits'(ref_y_q);
+      v_ref_d = ExactRefUvBits'(v_attr_q[0]) * ExactRefUvBits'(det_abs_q) +
+                ExactRefUvBits'(v_coef_x_q) * ExactRefUvBits'(ref_x_q) +
+                ExactRefUvBits'(v_coef_y_q) * ExactRefUvBits'(ref_y_q);
+      // Lines run along the axis in which q changes least.
+      x_major_d = (q_coef_x_q < 0 ? -q_coef_x_q : q_coef_x_q) <= (q_coef_y_q < 0 ? -q_coef_y_q : q_coef_y_q);
+      peak_length = '0;
+      for (int i = 0; i < PeakBits; i++) if (q_peak_q[i]) peak_length = 8'(i + 1);
+      shift_d = ShiftBits'($signed({1'b0, peak_length})) - ShiftBits'(PlaneBits);
 
-    // g = round(-q_major 2^g_frac / q_minor) = floor((2 N' + D') / (2 D')) with
-    // N' = -q_major sign(q_minor) 2^g_frac and D' = |q_minor|.
-    q_major = x_major_d ? q_coef_x_q : q_coef_y_q;
-    q_minor = x_major_d ? q_coef_y_q : q_coef_x_q;
-    g_numerator = ((q_minor < 0 ? (GDivNumBits+1)'(q_major) : -(GDivNumBits+1)'(q_major)) <<< (GFrac + 1)) +
-                  (q_minor < 0 ? -(GDivNumBits+1)'(q_minor) : (GDivNumBits+1)'(q_minor));
-    g_div_num = GDivNumBits'(g_numerator < 0 ? -g_numerator : g_numerator);
-    g_div_den = GDivDenBits'(q_minor < 0 ? -q_minor : q_minor) << 1;
+      // g = round(-q_major 2^g_frac / q_minor) = floor((2 N' + D') / (2 D')) with
+      // N' = -q_major sign(q_minor) 2^g_frac and D' = |q_minor|.
+      q_major = x_major_d ? q_coef_x_q : q_coef_y_q;
+      q_minor = x_major_d ? q_coef_y_q : q_coef_x_q;
+      g_numerator = ((q_minor < 0 ? (GDivNumBits+1)'(q_major) : -((GDivNumBits+1)'(q_major))) <<< (GFrac + 1)) +
+                    (q_minor < 0 ? -((GDivNumBits+1)'(q_minor)) : (GDivNumBits+1)'(q_minor));
+      g_div_num = GDivNumBits'(g_numerator < 0 ? -g_numerator : g_numerator);
+      g_div_den = GDivDenBits'(q_minor < 0 ? -q_minor : q_minor) << 1;
 
-    // Edge i at the first column: N0 = E - threshold there (model/coverage.cpp
-    // covered_span), divided by |free| 2^sp as (N0 >> sp) / |free|.
-    major_lo_c = x_major_d ? box_x_lo_q : box_y_lo_q;
-    for (int i = 0; i < 3; i++) begin
-      edge_fixed[i] = x_major_d ? edge_a_q[i] : edge_b_q[i];
-      edge_free[i] = x_major_d ? edge_b_q[i] : edge_a_q[i];
-      edge_free_abs[i] = FreeBits'(edge_free[i] < 0 ? -edge_free[i] : edge_free[i]);
-      edge_fixed_abs[i] = FreeBits'(edge_fixed[i] < 0 ? -edge_fixed[i] : edge_fixed[i]);
-      edge_n[i] = EdgeNBits'(edge_fixed[i]) *
-                      ((EdgeNBits'($signed({1'b0, major_lo_c})) <<< SubpixelBits) + EdgeNBits'(HalfPx)) +
-                  EdgeNBits'(edge_free[i]) * EdgeNBits'(HalfPx) + EdgeNBits'(edge_c_q[i]) -
-                  EdgeNBits'($signed({1'b0, edge_threshold_q[i]}));
-      edge_n_high[i] = BoundNumBits'(edge_n[i] >>> SubpixelBits);
-      edge_n_high_abs[i] = BoundNumBits'(edge_n_high[i] < 0 ? -edge_n_high[i] : edge_n_high[i]);
+      // Edge i at the first column: N0 = E - threshold there (model/coverage.cpp
+      // covered_span), divided by |free| 2^sp as (N0 >> sp) / |free|.
+      major_lo_c = x_major_d ? box_x_lo_q : box_y_lo_q;
+      for (int i = 0; i < 3; i++) begin
+        edge_fixed[i] = x_major_d ? edge_a_q[i] : edge_b_q[i];
+        edge_free[i] = x_major_d ? edge_b_q[i] : edge_a_q[i];
+        edge_free_abs[i] = FreeBits'(edge_free[i] < 0 ? -edge_free[i] : edge_free[i]);
+        edge_fixed_abs[i] = FreeBits'(edge_fixed[i] < 0 ? -edge_fixed[i] : edge_fixed[i]);
+        edge_n[i] = EdgeNBits'(edge_fixed[i]) *
+                        ((EdgeNBits'($signed({1'b0, major_lo_c})) <<< SubpixelBits) + EdgeNBits'(HalfPx)) +
+                    EdgeNBits'(edge_free[i]) * EdgeNBits'(HalfPx) + EdgeNBits'(edge_c_q[i]) -
+                    EdgeNBits'($signed({1'b0, edge_threshold_q[i]}));
+        edge_n_high[i] = BoundNumBits'(edge_n[i] >>> SubpixelBits);
+        edge_n_high_abs[i] = BoundNumBits'(edge_n_high[i] < 0 ? -edge_n_high[i] : edge_n_high[i]);
+      end
     end
   end
 
@@ -455,9 +528,9 @@ module setup_engine #(
       shift_q <= shift_d;
       g_zero_q <= q_minor == 0;
       g_negative_q <= g_numerator < 0;
-      edge_fixed_q <= edge_fixed;
-      edge_free_q <= edge_free;
-      edge_n_high_q <= edge_n_high;
+      for (int i = 0; i < 3; i++) edge_fixed_q[i] <= edge_fixed[i];
+      for (int i = 0; i < 3; i++) edge_free_q[i] <= edge_free[i];
+      for (int i = 0; i < 3; i++) edge_n_high_q[i] <= edge_n_high[i];
       for (int i = 0; i < 3; i++) edge_n_low_q[i] <= edge_n[i][SubpixelBits-1:0];
     end
   end
@@ -524,19 +597,32 @@ module setup_engine #(
   logic signed [StepNumBits-1:0]    step_u_exact, step_v_exact;
 
   always_comb begin
-    g_d = GBits'($signed({1'b0, g_quotient}));
-    if (g_negative_q) g_d = -g_d - GBits'(g_remainder != '0);
-    if (g_zero_q) g_d = '0;
-    line_shift = density_log2_q;
-    line_norm_shift = (ShiftBits+1)'(shift_q) + (ShiftBits+1)'($signed({1'b0, line_shift}));
-    step_norm_shift = (ShiftBits+2)'(shift_q) + (ShiftBits+2)'(GFrac);
-    q_axis_minor = (x_major_q ? AxisQBits'(q_coef_y_q) : AxisQBits'(q_coef_x_q)) <<< SubpixelBits;
-    u_axis_major = (x_major_q ? AxisUvBits'(u_coef_x_q) : AxisUvBits'(u_coef_y_q)) <<< SubpixelBits;
-    u_axis_minor = (x_major_q ? AxisUvBits'(u_coef_y_q) : AxisUvBits'(u_coef_x_q)) <<< SubpixelBits;
-    v_axis_major = (x_major_q ? AxisUvBits'(v_coef_x_q) : AxisUvBits'(v_coef_y_q)) <<< SubpixelBits;
-    v_axis_minor = (x_major_q ? AxisUvBits'(v_coef_y_q) : AxisUvBits'(v_coef_x_q)) <<< SubpixelBits;
-    step_u_exact = (StepNumBits'(u_axis_major) <<< GFrac) + StepNumBits'(g_d) * StepNumBits'(u_axis_minor);
-    step_v_exact = (StepNumBits'(v_axis_major) <<< GFrac) + StepNumBits'(g_d) * StepNumBits'(v_axis_minor);
+    g_d = '0;
+    line_shift = '0;
+    line_norm_shift = '0;
+    step_norm_shift = '0;
+    q_axis_minor = '0;
+    u_axis_major = '0;
+    u_axis_minor = '0;
+    v_axis_major = '0;
+    v_axis_minor = '0;
+    step_u_exact = '0;
+    step_v_exact = '0;
+    if (stage_d) begin
+      g_d = GBits'($signed({1'b0, g_quotient}));
+      if (g_negative_q) g_d = -g_d - GBits'(g_remainder != '0);
+      if (g_zero_q) g_d = '0;
+      line_shift = density_log2_q;
+      line_norm_shift = (ShiftBits+1)'(shift_q) + (ShiftBits+1)'($signed({1'b0, line_shift}));
+      step_norm_shift = (ShiftBits+2)'(shift_q) + (ShiftBits+2)'(GFrac);
+      q_axis_minor = (x_major_q ? AxisQBits'(q_coef_y_q) : AxisQBits'(q_coef_x_q)) <<< SubpixelBits;
+      u_axis_major = (x_major_q ? AxisUvBits'(u_coef_x_q) : AxisUvBits'(u_coef_y_q)) <<< SubpixelBits;
+      u_axis_minor = (x_major_q ? AxisUvBits'(u_coef_y_q) : AxisUvBits'(u_coef_x_q)) <<< SubpixelBits;
+      v_axis_major = (x_major_q ? AxisUvBits'(v_coef_x_q) : AxisUvBits'(v_coef_y_q)) <<< SubpixelBits;
+      v_axis_minor = (x_major_q ? AxisUvBits'(v_coef_y_q) : AxisUvBits'(v_coef_x_q)) <<< SubpixelBits;
+      step_u_exact = (StepNumBits'(u_axis_major) <<< GFrac) + StepNumBits'(g_d) * StepNumBits'(u_axis_minor);
+      step_v_exact = (StepNumBits'(v_axis_major) <<< GFrac) + StepNumBits'(g_d) * StepNumBits'(v_axis_minor);
+    end
   end
 
   // Normalisation: every plane value of the triangle shifted by the same n.
@@ -549,28 +635,28 @@ module setup_engine #(
 
   shift_round #(.InBits(ExactRefQBits), .OutBits(PlaneRefQBits), .ShiftBits(ShiftBits),
                 .MaxLeft(MaxPlaneLeft))
-    u_norm_q_ref (.in_i(q_ref_q), .shift_i(shift_q), .out_o(q_at_ref_d), .saturated_o(normalise_saturated[0]));
+    u_norm_q_ref (.enable_i(stage_d), .in_i(q_ref_q), .shift_i(shift_q), .out_o(q_at_ref_d), .saturated_o(normalise_saturated[0]));
   shift_round #(.InBits(ExactRefUvBits), .OutBits(PlaneRefUvBits), .ShiftBits(ShiftBits),
                 .MaxLeft(MaxPlaneLeft))
-    u_norm_u_ref (.in_i(u_ref_q), .shift_i(shift_q), .out_o(u_at_ref_d), .saturated_o(normalise_saturated[1]));
+    u_norm_u_ref (.enable_i(stage_d), .in_i(u_ref_q), .shift_i(shift_q), .out_o(u_at_ref_d), .saturated_o(normalise_saturated[1]));
   shift_round #(.InBits(ExactRefUvBits), .OutBits(PlaneRefUvBits), .ShiftBits(ShiftBits),
                 .MaxLeft(MaxPlaneLeft))
-    u_norm_v_ref (.in_i(v_ref_q), .shift_i(shift_q), .out_o(v_at_ref_d), .saturated_o(normalise_saturated[2]));
+    u_norm_v_ref (.enable_i(stage_d), .in_i(v_ref_q), .shift_i(shift_q), .out_o(v_at_ref_d), .saturated_o(normalise_saturated[2]));
   shift_round #(.InBits(AxisQBits), .OutBits(PlaneStepQBits), .ShiftBits(ShiftBits+1),
                 .MaxLeft(MaxPlaneLeft))
-    u_norm_q_line (.in_i(q_axis_minor), .shift_i(line_norm_shift), .out_o(q_per_line_d), .saturated_o(normalise_saturated[3]));
+    u_norm_q_line (.enable_i(stage_d), .in_i(q_axis_minor), .shift_i(line_norm_shift), .out_o(q_per_line_d), .saturated_o(normalise_saturated[3]));
   shift_round #(.InBits(AxisUvBits), .OutBits(PlaneStepUvBits), .ShiftBits(ShiftBits+1),
                 .MaxLeft(MaxPlaneLeft))
-    u_norm_u_line (.in_i(u_axis_minor), .shift_i(line_norm_shift), .out_o(u_per_line_d), .saturated_o(normalise_saturated[4]));
+    u_norm_u_line (.enable_i(stage_d), .in_i(u_axis_minor), .shift_i(line_norm_shift), .out_o(u_per_line_d), .saturated_o(normalise_saturated[4]));
   shift_round #(.InBits(AxisUvBits), .OutBits(PlaneStepUvBits), .ShiftBits(ShiftBits+1),
                 .MaxLeft(MaxPlaneLeft))
-    u_norm_v_line (.in_i(v_axis_minor), .shift_i(line_norm_shift), .out_o(v_per_line_d), .saturated_o(normalise_saturated[5]));
+    u_norm_v_line (.enable_i(stage_d), .in_i(v_axis_minor), .shift_i(line_norm_shift), .out_o(v_per_line_d), .saturated_o(normalise_saturated[5]));
   shift_round #(.InBits(StepNumBits), .OutBits(StepUvBits), .ShiftBits(ShiftBits+2),
                 .MaxLeft(MaxPlaneLeft))
-    u_norm_step_u (.in_i(step_u_exact), .shift_i(step_norm_shift), .out_o(step_u_d), .saturated_o(normalise_saturated[6]));
+    u_norm_step_u (.enable_i(stage_d), .in_i(step_u_exact), .shift_i(step_norm_shift), .out_o(step_u_d), .saturated_o(normalise_saturated[6]));
   shift_round #(.InBits(StepNumBits), .OutBits(StepUvBits), .ShiftBits(ShiftBits+2),
                 .MaxLeft(MaxPlaneLeft))
-    u_norm_step_v (.in_i(step_v_exact), .shift_i(step_norm_shift), .out_o(step_v_d), .saturated_o(normalise_saturated[7]));
+    u_norm_step_v (.enable_i(stage_d), .in_i(step_v_exact), .shift_i(step_norm_shift), .out_o(step_v_d), .saturated_o(normalise_saturated[7]));
   assign normalise_saturated[8] = g_overflow && !g_zero_q;
 
   // Walk geometry and the line range: kappa = m ((minor - minor_ref) 2^g_frac
@@ -585,44 +671,61 @@ module setup_engine #(
   localparam logic signed [KappaBits-1:0] KappaScale = KappaBits'(1) <<< (SubpixelBits + GFrac);
 
   always_comb begin
-    major_lo_d = x_major_q ? box_x_lo_q : box_y_lo_q;
-    major_count_d = x_major_q ? (PixelBits+1)'(box_x_hi_q) - (PixelBits+1)'(box_x_lo_q) + 1
-                              : (PixelBits+1)'(box_y_hi_q) - (PixelBits+1)'(box_y_lo_q) + 1;
-    minor_lo_d = x_major_q ? box_y_lo_q : box_x_lo_q;
-    minor_hi_d = x_major_q ? box_y_hi_q : box_x_hi_q;
+    major_lo_d = '0;
+    major_count_d = '0;
+    minor_lo_d = '0;
+    minor_hi_d = '0;
     kappa_lo = '0;
     kappa_hi = '0;
-    for (int i = 0; i < 3; i++) begin
-      vertex_major = (x_major_q ? (DiffBits+1)'(x_q[i]) - (DiffBits+1)'(x_q[0]) - (DiffBits+1)'(ref_x_q)
-                                : (DiffBits+1)'(y_q[i]) - (DiffBits+1)'(y_q[0]) - (DiffBits+1)'(ref_y_q));
-      vertex_minor = (x_major_q ? (DiffBits+1)'(y_q[i]) - (DiffBits+1)'(y_q[0]) - (DiffBits+1)'(ref_y_q)
-                                : (DiffBits+1)'(x_q[i]) - (DiffBits+1)'(x_q[0]) - (DiffBits+1)'(ref_x_q));
-      kappa = ((KappaBits'(vertex_minor) <<< GFrac) - KappaBits'(g_d) * KappaBits'(vertex_major))
-              <<< density_log2_q;
-      if (i == 0 || kappa < kappa_lo) kappa_lo = kappa;
-      if (i == 0 || kappa > kappa_hi) kappa_hi = kappa;
+    vertex_major = '0;
+    vertex_minor = '0;
+    kappa = '0;
+    line_lo = '0;
+    line_hi = '0;
+    round_product = '0;
+    round_last = '0;
+    minor_extent = '0;
+    no_lines_d = '0;
+    if (stage_d) begin
+      major_lo_d = x_major_q ? box_x_lo_q : box_y_lo_q;
+      major_count_d = x_major_q ? (PixelBits+1)'(box_x_hi_q) - (PixelBits+1)'(box_x_lo_q) + 1
+                                : (PixelBits+1)'(box_y_hi_q) - (PixelBits+1)'(box_y_lo_q) + 1;
+      minor_lo_d = x_major_q ? box_y_lo_q : box_x_lo_q;
+      minor_hi_d = x_major_q ? box_y_hi_q : box_x_hi_q;
+      kappa_lo = '0;
+      kappa_hi = '0;
+      for (int i = 0; i < 3; i++) begin
+        vertex_major = (x_major_q ? (DiffBits+1)'(x_q[i]) - (DiffBits+1)'(x_q[0]) - (DiffBits+1)'(ref_x_q)
+                                  : (DiffBits+1)'(y_q[i]) - (DiffBits+1)'(y_q[0]) - (DiffBits+1)'(ref_y_q));
+        vertex_minor = (x_major_q ? (DiffBits+1)'(y_q[i]) - (DiffBits+1)'(y_q[0]) - (DiffBits+1)'(ref_y_q)
+                                  : (DiffBits+1)'(x_q[i]) - (DiffBits+1)'(x_q[0]) - (DiffBits+1)'(ref_x_q));
+        kappa = ((KappaBits'(vertex_minor) <<< GFrac) - KappaBits'(g_d) * KappaBits'(vertex_major))
+                <<< density_log2_q;
+        if (i == 0 || kappa < kappa_lo) kappa_lo = kappa;
+        if (i == 0 || kappa > kappa_hi) kappa_hi = kappa;
+      end
+      // ceil((2 kappa - scale) / (2 scale)) and ceil((2 kappa + scale) / (2 scale)) - 1.
+      line_lo = LineRangeBits'(-((KappaScale - (kappa_lo <<< 1)) >>> (SubpixelBits + GFrac + 1)));
+      line_hi = LineRangeBits'(-((-(kappa_hi <<< 1) - KappaScale) >>> (SubpixelBits + GFrac + 1))) - 1;
+      // The box bounds them too: line = m minor_offset - round(m g o).
+      round_product = ((GBits+PixelBits+4)'(g_d) *
+                       ((GBits+PixelBits+4)'($signed({1'b0, major_count_d})) - (GBits+PixelBits+4)'(1)))
+                      <<< density_log2_q;
+      round_last = LineRangeBits'((round_product + (GBits+PixelBits+4)'(1 <<< (GFrac - 1))) >>> GFrac);
+      minor_extent = (LineRangeBits'($signed({1'b0, minor_hi_d})) - LineRangeBits'($signed({1'b0, minor_lo_d})))
+                     <<< density_log2_q;
+      if (round_last > 0) begin
+        if (line_lo < -round_last) line_lo = -round_last;
+      end else if (line_lo < 0) begin
+        line_lo = '0;
+      end
+      if (round_last < 0) begin
+        if (line_hi > minor_extent - round_last) line_hi = minor_extent - round_last;
+      end else if (line_hi > minor_extent) begin
+        line_hi = minor_extent;
+      end
+      no_lines_d = line_lo > line_hi;
     end
-    // ceil((2 kappa - scale) / (2 scale)) and ceil((2 kappa + scale) / (2 scale)) - 1.
-    line_lo = LineRangeBits'(-((KappaScale - (kappa_lo <<< 1)) >>> (SubpixelBits + GFrac + 1)));
-    line_hi = LineRangeBits'(-((-(kappa_hi <<< 1) - KappaScale) >>> (SubpixelBits + GFrac + 1))) - 1;
-    // The box bounds them too: line = m minor_offset - round(m g o).
-    round_product = ((GBits+PixelBits+4)'(g_d) *
-                     ((GBits+PixelBits+4)'($signed({1'b0, major_count_d})) - (GBits+PixelBits+4)'(1)))
-                    <<< density_log2_q;
-    round_last = LineRangeBits'((round_product + (GBits+PixelBits+4)'(1 <<< (GFrac - 1))) >>> GFrac);
-    minor_extent = (LineRangeBits'($signed({1'b0, minor_hi_d})) - LineRangeBits'($signed({1'b0, minor_lo_d})))
-                   <<< density_log2_q;
-    if (round_last > 0) begin
-      if (line_lo < -round_last) line_lo = -round_last;
-    end else if (line_lo < 0) begin
-      line_lo = '0;
-    end
-    if (round_last < 0) begin
-      if (line_hi > minor_extent - round_last) line_hi = minor_extent - round_last;
-    end else if (line_hi > minor_extent) begin
-      line_hi = minor_extent;
-    end
-    no_lines_d = line_lo > line_hi;
   end
 
   // Edge trackers (column_walker.sv): span end = floor(N / S) with remainder,
@@ -638,34 +741,45 @@ module setup_engine #(
   logic [FreeBits-1:0]            free_abs;
 
   always_comb begin
-    for (int i = 0; i < 3; i++) begin
-      free_abs = FreeBits'(edge_free_q[i] < 0 ? -edge_free_q[i] : edge_free_q[i]);
-      edge_kind_d[i] = edge_free_q[i] > 0 ? 2'd1 : (edge_free_q[i] < 0 ? 2'd2 : 2'd0);
-      if (edge_free_q[i] == 0) begin
-        edge_bound_d[i] = EdgeBoundBits'(edge_n_high_q[i]);
-        edge_rem_d[i] = EdgeStepBits'(edge_n_low_q[i]);
-        edge_step_d[i] = EdgeStepBits'(1) << SubpixelBits;
-        edge_slope_d[i] = EdgeSlopeBits'(edge_fixed_q[i]);
-        edge_slope_rem_d[i] = '0;
-        rem_high = '0;
-        slope_rem_high = '0;
-      end else begin
-        // floor for a negative numerator: -q - (r != 0), remainder |free| - r.
-        edge_bound_d[i] = EdgeBoundBits'($signed({1'b0, bound_quotient[i]}));
-        rem_high = bound_remainder[i];
-        if (edge_n_high_q[i] < 0) begin
-          edge_bound_d[i] = -edge_bound_d[i] - EdgeBoundBits'(bound_remainder[i] != '0);
-          rem_high = bound_remainder[i] != '0 ? free_abs - bound_remainder[i] : '0;
+    free_abs = '0;
+    for (int i = 0; i < 3; i++) edge_kind_d[i] = '0;
+    for (int i = 0; i < 3; i++) edge_bound_d[i] = '0;
+    for (int i = 0; i < 3; i++) edge_rem_d[i] = '0;
+    for (int i = 0; i < 3; i++) edge_step_d[i] = '0;
+    for (int i = 0; i < 3; i++) edge_slope_d[i] = '0;
+    for (int i = 0; i < 3; i++) edge_slope_rem_d[i] = '0;
+    rem_high = '0;
+    slope_rem_high = '0;
+    if (stage_d) begin
+      for (int i = 0; i < 3; i++) begin
+        free_abs = FreeBits'(edge_free_q[i] < 0 ? -edge_free_q[i] : edge_free_q[i]);
+        edge_kind_d[i] = edge_free_q[i] > 0 ? 2'd1 : (edge_free_q[i] < 0 ? 2'd2 : 2'd0);
+        if (edge_free_q[i] == 0) begin
+          edge_bound_d[i] = EdgeBoundBits'(edge_n_high_q[i]);
+          edge_rem_d[i] = EdgeStepBits'(edge_n_low_q[i]);
+          edge_step_d[i] = EdgeStepBits'(1) << SubpixelBits;
+          edge_slope_d[i] = EdgeSlopeBits'(edge_fixed_q[i]);
+          edge_slope_rem_d[i] = '0;
+          rem_high = '0;
+          slope_rem_high = '0;
+        end else begin
+          // floor for a negative numerator: -q - (r != 0), remainder |free| - r.
+          edge_bound_d[i] = EdgeBoundBits'($signed({1'b0, bound_quotient[i]}));
+          rem_high = bound_remainder[i];
+          if (edge_n_high_q[i] < 0) begin
+            edge_bound_d[i] = -edge_bound_d[i] - EdgeBoundBits'(bound_remainder[i] != '0);
+            rem_high = bound_remainder[i] != '0 ? free_abs - bound_remainder[i] : '0;
+          end
+          edge_rem_d[i] = (EdgeStepBits'(rem_high) << SubpixelBits) | EdgeStepBits'(edge_n_low_q[i]);
+          edge_step_d[i] = EdgeStepBits'(free_abs) << SubpixelBits;
+          edge_slope_d[i] = EdgeSlopeBits'($signed({1'b0, slope_quotient[i]}));
+          slope_rem_high = slope_remainder[i];
+          if (edge_fixed_q[i] < 0) begin
+            edge_slope_d[i] = -edge_slope_d[i] - EdgeSlopeBits'(slope_remainder[i] != '0);
+            slope_rem_high = slope_remainder[i] != '0 ? free_abs - slope_remainder[i] : '0;
+          end
+          edge_slope_rem_d[i] = EdgeStepBits'(slope_rem_high) << SubpixelBits;
         end
-        edge_rem_d[i] = (EdgeStepBits'(rem_high) << SubpixelBits) | EdgeStepBits'(edge_n_low_q[i]);
-        edge_step_d[i] = EdgeStepBits'(free_abs) << SubpixelBits;
-        edge_slope_d[i] = EdgeSlopeBits'($signed({1'b0, slope_quotient[i]}));
-        slope_rem_high = slope_remainder[i];
-        if (edge_fixed_q[i] < 0) begin
-          edge_slope_d[i] = -edge_slope_d[i] - EdgeSlopeBits'(slope_remainder[i] != '0);
-          slope_rem_high = slope_remainder[i] != '0 ? free_abs - slope_remainder[i] : '0;
-        end
-        edge_slope_rem_d[i] = EdgeStepBits'(slope_rem_high) << SubpixelBits;
       end
     end
   end
@@ -705,12 +819,12 @@ module setup_engine #(
       v_per_line_q <= v_per_line_d;
       step_u_q <= step_u_d;
       step_v_q <= step_v_d;
-      edge_kind_q <= edge_kind_d;
-      edge_bound_q <= edge_bound_d;
-      edge_rem_q <= edge_rem_d;
-      edge_step_q <= edge_step_d;
-      edge_slope_q <= edge_slope_d;
-      edge_slope_rem_q <= edge_slope_rem_d;
+      for (int i = 0; i < 3; i++) edge_kind_q[i] <= edge_kind_d[i];
+      for (int i = 0; i < 3; i++) edge_bound_q[i] <= edge_bound_d[i];
+      for (int i = 0; i < 3; i++) edge_rem_q[i] <= edge_rem_d[i];
+      for (int i = 0; i < 3; i++) edge_step_q[i] <= edge_step_d[i];
+      for (int i = 0; i < 3; i++) edge_slope_q[i] <= edge_slope_d[i];
+      for (int i = 0; i < 3; i++) edge_slope_rem_q[i] <= edge_slope_rem_d[i];
     end
   end
 
@@ -785,13 +899,20 @@ module setup_engine #(
   logic [RecipBits:0]         recip;
 
   always_comb begin
-    depth_out = q_line_q <= 0;
-    q_positive = depth_out ? FillQBits'(1) : q_line_q;
+    depth_out = '0;
+    q_positive = '0;
     exponent = '0;
-    for (int i = 0; i < FillQBits - 1; i++) if (q_positive[i]) exponent = ExponentBits'(i);
-    if (32'(exponent) >= RecipBits) mantissa = (RecipBits+1)'(q_positive >> (32'(exponent) - RecipBits));
-    else mantissa = (RecipBits+1)'(q_positive << (RecipBits - 32'(exponent)));
-    issue_tag = {fill_addr_i, depth_out, exponent, u_line_q, v_line_q};
+    mantissa = '0;
+    issue_tag = '0;
+    if (fill_valid_i) begin
+      depth_out = q_line_q <= 0;
+      q_positive = depth_out ? FillQBits'(1) : q_line_q;
+      exponent = '0;
+      for (int i = 0; i < FillQBits - 1; i++) if (q_positive[i]) exponent = ExponentBits'(i);
+      if (32'(exponent) >= RecipBits) mantissa = (RecipBits+1)'(q_positive >> (32'(exponent) - RecipBits));
+      else mantissa = (RecipBits+1)'(q_positive << (RecipBits - 32'(exponent)));
+      issue_tag = {fill_addr_i, depth_out, exponent, u_line_q, v_line_q};
+    end
   end
 
   reciprocal #(
@@ -820,23 +941,36 @@ module setup_engine #(
   logic [3:0]                    entry_saturated;
 
   always_comb begin
-    {result_addr, result_depth_out, result_exponent, result_u, result_v} = result_tag;
-    product_tu = ProductTBits'(result_u) * ProductTBits'($signed({1'b0, recip}));
-    product_tv = ProductTBits'(result_v) * ProductTBits'($signed({1'b0, recip}));
-    product_su = ProductSBits'(step_u_q) * ProductSBits'($signed({1'b0, recip}));
-    product_sv = ProductSBits'(step_v_q) * ProductSBits'($signed({1'b0, recip}));
-    shift_t = ProductShiftBits'($signed({1'b0, result_exponent})) + ProductShiftBits'(RecipBits + UvInFrac - TFrac);
-    shift_s = ProductShiftBits'($signed({1'b0, result_exponent})) + ProductShiftBits'(RecipBits + UvInFrac - SFrac);
+    result_addr = '0;
+    result_depth_out = '0;
+    result_exponent = '0;
+    result_u = '0;
+    result_v = '0;
+    product_tu = '0;
+    product_tv = '0;
+    product_su = '0;
+    product_sv = '0;
+    shift_t = '0;
+    shift_s = '0;
+    if (result_valid) begin
+      {result_addr, result_depth_out, result_exponent, result_u, result_v} = result_tag;
+      product_tu = ProductTBits'(result_u) * ProductTBits'($signed({1'b0, recip}));
+      product_tv = ProductTBits'(result_v) * ProductTBits'($signed({1'b0, recip}));
+      product_su = ProductSBits'(step_u_q) * ProductSBits'($signed({1'b0, recip}));
+      product_sv = ProductSBits'(step_v_q) * ProductSBits'($signed({1'b0, recip}));
+      shift_t = ProductShiftBits'($signed({1'b0, result_exponent})) + ProductShiftBits'(RecipBits + UvInFrac - TFrac);
+      shift_s = ProductShiftBits'($signed({1'b0, result_exponent})) + ProductShiftBits'(RecipBits + UvInFrac - SFrac);
+    end
   end
 
   shift_round #(.InBits(ProductTBits), .OutBits(TBits), .ShiftBits(ProductShiftBits), .MaxLeft(MaxTLeft))
-    u_narrow_tu (.in_i(product_tu), .shift_i(shift_t), .out_o(t_u), .saturated_o(entry_saturated[0]));
+    u_narrow_tu (.enable_i(result_valid), .in_i(product_tu), .shift_i(shift_t), .out_o(t_u), .saturated_o(entry_saturated[0]));
   shift_round #(.InBits(ProductTBits), .OutBits(TBits), .ShiftBits(ProductShiftBits), .MaxLeft(MaxTLeft))
-    u_narrow_tv (.in_i(product_tv), .shift_i(shift_t), .out_o(t_v), .saturated_o(entry_saturated[1]));
+    u_narrow_tv (.enable_i(result_valid), .in_i(product_tv), .shift_i(shift_t), .out_o(t_v), .saturated_o(entry_saturated[1]));
   shift_round #(.InBits(ProductSBits), .OutBits(SBits), .ShiftBits(ProductShiftBits), .MaxLeft(MaxSLeft))
-    u_narrow_su (.in_i(product_su), .shift_i(shift_s), .out_o(s_u), .saturated_o(entry_saturated[2]));
+    u_narrow_su (.enable_i(result_valid), .in_i(product_su), .shift_i(shift_s), .out_o(s_u), .saturated_o(entry_saturated[2]));
   shift_round #(.InBits(ProductSBits), .OutBits(SBits), .ShiftBits(ProductShiftBits), .MaxLeft(MaxSLeft))
-    u_narrow_sv (.in_i(product_sv), .shift_i(shift_s), .out_o(s_v), .saturated_o(entry_saturated[3]));
+    u_narrow_sv (.enable_i(result_valid), .in_i(product_sv), .shift_i(shift_s), .out_o(s_v), .saturated_o(entry_saturated[3]));
 
   always_comb begin
     write_entry_o = '0;

@@ -2,7 +2,8 @@
 // with ties toward +inf (SC_RND), then saturated to OutBits with saturated_o
 // raised. A negative shift multiplies exactly by 2^-shift (up to MaxLeft
 // places). Twin of fx::shift_round followed by fx::fit with Overflow::Saturate
-// (model/fixed.hpp). Combinational.
+// (model/fixed.hpp). Combinational; while enable_i is low the output is 0
+// (operand isolation: the shifter does not toggle, and simulation skips it).
 //
 // floor((x + 2^(s-1)) / 2^s) = 0 for every s >= InBits, since |x| < 2^(InBits-1):
 // the right shift only needs InBits + 1 bits of headroom.
@@ -14,6 +15,7 @@ module shift_round #(
   parameter int ShiftBits = 8,   // signed shift amount
   parameter int MaxLeft   = 0    // the largest left shift (-shift) that can occur
 ) (
+  input  logic                        enable_i,
   input  logic signed [InBits-1:0]    in_i,
   input  logic signed [ShiftBits-1:0] shift_i,
   output logic signed [OutBits-1:0]   out_o,
@@ -32,15 +34,18 @@ module shift_round #(
 
   always_comb begin
     shift = 32'(shift_i);
-    wide = WideBits'(in_i);
+    wide = '0;
     half = '0;
-    if (shift <= 0) begin
+    if (!enable_i) begin
+      wide = '0;
+    end else if (shift <= 0) begin
+      wide = WideBits'(in_i);
       wide = wide <<< (-shift);
     end else if (shift >= 32'(InBits)) begin
       wide = '0;
     end else begin
       half = WideBits'(1) <<< (shift - 1);
-      wide = (wide + half) >>> shift;
+      wide = (WideBits'(in_i) + half) >>> shift;
     end
     saturated_o = wide > OutMax || wide < OutMin;
     out_o = OutBits'(saturated_o ? (wide > OutMax ? OutMax : OutMin) : wide);
