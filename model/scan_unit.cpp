@@ -23,6 +23,10 @@ ScanUnit::ScanUnit(const Design& design, const Widths& widths, int viewport_widt
 
 TriangleRecord ScanUnit::run(const UnitTriangle& triangle, std::vector<Fragment>* fragments) {
   const Setup setup = setup_engine(triangle, design_, widths_, viewport_width_, viewport_height_);
+  if (trace_) {
+    trace_->setup = setup;
+    trace_->writes.clear();
+  }
   TriangleRecord record;
   if (!setup.empty) {
     switch (design_.kind) {
@@ -70,8 +74,11 @@ TriangleRecord ScanUnit::run_constant_depth(const Setup& s, std::vector<Fragment
     ++record.bands;
     // Fill: one line enters the reciprocal pipeline per cycle.
     table_.start_band(band_lo - guard);
-    for (int64_t line = band_lo - guard; line <= band_hi + guard; ++line)
-      table_.write(line, fill_line(s, line, widths_));
+    for (int64_t line = band_lo - guard; line <= band_hi + guard; ++line) {
+      const TableEntry entry = fill_line(s, line, widths_);
+      table_.write(line, entry);
+      if (trace_) trace_->writes.push_back({line - (band_lo - guard), entry});
+    }
     const int64_t band_lines = band_hi - band_lo + 1 + 2 * guard;
     record.lines += band_lines;
     record.fill_cycles += band_lines + widths_.recip_latency;

@@ -9,6 +9,7 @@
 
 #include "design.hpp"
 #include "scanline_table.hpp"
+#include "setup_engine.hpp"
 #include "triangle.hpp"
 #include "widths.hpp"
 
@@ -30,6 +31,18 @@ struct TriangleRecord {
   uint32_t flags = 0;
 };
 
+// What the setup engine and the table fill produced for one triangle: the
+// values the RTL's observation ports show, so that a mismatch can be traced to
+// the block where it starts (sim/scoreboard.cpp).
+struct TableWrite {
+  int64_t address = 0;  // line - (band's first line - guard)
+  TableEntry entry;
+};
+struct BlockTrace {
+  Setup setup;
+  std::vector<TableWrite> writes;
+};
+
 class ScanUnit {
  public:
   ScanUnit(const Design& design, const Widths& widths, int viewport_width, int viewport_height);
@@ -38,6 +51,8 @@ class ScanUnit {
   TriangleRecord run(const UnitTriangle& triangle, std::vector<Fragment>* fragments);
 
   const ScanlineTable& table() const { return table_; }
+  // When set, run() records the setup and every table write of the triangle.
+  void trace_blocks(BlockTrace* trace) { trace_ = trace; }
   const Design& design() const { return design_; }
 
  private:
@@ -52,6 +67,7 @@ class ScanUnit {
   int viewport_width_, viewport_height_;
   ScanlineTable table_;
   int64_t setup_cycles_;  // from the setup engine's structure (derived_widths.cpp)
+  BlockTrace* trace_ = nullptr;
 };
 
 }  // namespace cdsim

@@ -63,7 +63,23 @@ module cd_scan_unit #(
   output logic [31:0] rec_lines_o,
   output logic [31:0] rec_bands_o,
   output logic [31:0] rec_pixels_o,
-  output logic [7:0]  rec_flags_o
+  output logic [7:0]  rec_flags_o,
+
+  // Observation for the scoreboard (sim/scoreboard.cpp), wires only: the setup
+  // engine's results in the last setup cycle, and every table write. With
+  // them a mismatch is traced to the block where it starts.
+  output logic        obs_setup_valid_o,
+  output logic [7:0]  obs_setup_bits_o,   // {depth_range, no_lines, x_major, empty}
+  output logic [31:0] obs_setup_g_o,      // sign-extended
+  output logic [63:0] obs_setup_box_o,    // {major_lo, major_count, minor_lo, minor_hi}, 16 bits each
+  output logic [63:0] obs_setup_lines_o,  // {pixel_line_lo, pixel_line_hi}, 32 bits each, signed
+  output logic        obs_write_valid_o,
+  output logic [31:0] obs_write_addr_o,
+  output logic [63:0] obs_write_tu_o,     // T.u, T.v, S.u, S.v, sign-extended
+  output logic [63:0] obs_write_tv_o,
+  output logic [63:0] obs_write_su_o,
+  output logic [63:0] obs_write_sv_o,
+  output logic [1:0]  obs_write_flags_o   // {depth_range, table_saturated}
 );
 
   localparam int TableDepth   = `CD_TABLE_DEPTH;
@@ -474,6 +490,22 @@ module cd_scan_unit #(
   assign rec_bands_o = 32'(bands_q);
   assign rec_pixels_o = 32'(pixels_q);
   assign rec_flags_o = flags_q;
+
+  localparam int TBits = `CD_T_BITS;
+  localparam int SBits = `CD_S_BITS;
+  assign obs_setup_valid_o = state_q == StSetup && count_q == StepCountBits'(SetupCycles - 1);
+  assign obs_setup_bits_o = {4'd0, setup_flags[`CD_FLAG_DEPTH_RANGE], setup_no_lines, setup_x_major,
+                             setup_empty};
+  assign obs_setup_g_o = 32'(setup_g);
+  assign obs_setup_box_o = {16'(major_lo), 16'(major_count), 16'(minor_lo), 16'(minor_hi)};
+  assign obs_setup_lines_o = {32'(pixel_line_lo), 32'(pixel_line_hi)};
+  assign obs_write_valid_o = write_valid;
+  assign obs_write_addr_o = 32'(write_addr);
+  assign obs_write_tu_o = 64'($signed(write_entry[`CD_WORD_TU_LSB +: TBits]));
+  assign obs_write_tv_o = 64'($signed(write_entry[`CD_WORD_TV_LSB +: TBits]));
+  assign obs_write_su_o = 64'($signed(write_entry[`CD_WORD_SU_LSB +: SBits]));
+  assign obs_write_sv_o = 64'($signed(write_entry[`CD_WORD_SV_LSB +: SBits]));
+  assign obs_write_flags_o = {write_entry[`CD_WORD_DEPTH_RANGE_BIT], write_entry[`CD_WORD_SATURATED_BIT]};
 
 `ifndef SYNTHESIS
   // Handshakes: a fragment or record offered and refused stays unchanged until

@@ -123,6 +123,18 @@ class Bench : public sc_core::sc_module {
     dut.rec_bands_o(rec_bands);
     dut.rec_pixels_o(rec_pixels);
     dut.rec_flags_o(rec_flags);
+    dut.obs_setup_valid_o(obs_setup_valid);
+    dut.obs_setup_bits_o(obs_setup_bits);
+    dut.obs_setup_g_o(obs_setup_g);
+    dut.obs_setup_box_o(obs_setup_box);
+    dut.obs_setup_lines_o(obs_setup_lines);
+    dut.obs_write_valid_o(obs_write_valid);
+    dut.obs_write_addr_o(obs_write_addr);
+    dut.obs_write_tu_o(obs_write_tu);
+    dut.obs_write_tv_o(obs_write_tv);
+    dut.obs_write_su_o(obs_write_su);
+    dut.obs_write_sv_o(obs_write_sv);
+    dut.obs_write_flags_o(obs_write_flags);
     SC_METHOD(on_falling_edge);
     sensitive << clk.negedge_event();
     dont_initialize();
@@ -170,6 +182,34 @@ class Bench : public sc_core::sc_module {
         f.flags = frag_flags.read();
         if (!scoreboard_.fragment(f)) fail();
       }
+    }
+    if (checking_ && obs_setup_valid.read()) {
+      const uint32_t bits = obs_setup_bits.read();
+      const uint64_t box = obs_setup_box.read(), lines = obs_setup_lines.read();
+      RtlSetup a;
+      a.empty = bits & 1;
+      a.x_major = (bits >> 1) & 1;
+      a.no_lines = (bits >> 2) & 1;
+      a.depth_range = (bits >> 3) & 1;
+      a.g = static_cast<int32_t>(obs_setup_g.read());
+      a.major_lo = static_cast<int64_t>((box >> 48) & 0xffff);
+      a.major_count = static_cast<int64_t>((box >> 32) & 0xffff);
+      a.minor_lo = static_cast<int64_t>((box >> 16) & 0xffff);
+      a.minor_hi = static_cast<int64_t>(box & 0xffff);
+      a.pixel_line_lo = static_cast<int32_t>(static_cast<uint32_t>(lines >> 32));
+      a.pixel_line_hi = static_cast<int32_t>(static_cast<uint32_t>(lines));
+      if (!scoreboard_.setup(a)) fail();
+    }
+    if (checking_ && obs_write_valid.read()) {
+      RtlTableWrite w;
+      w.address = obs_write_addr.read();
+      w.t_u = static_cast<int64_t>(obs_write_tu.read());
+      w.t_v = static_cast<int64_t>(obs_write_tv.read());
+      w.s_u = static_cast<int64_t>(obs_write_su.read());
+      w.s_v = static_cast<int64_t>(obs_write_sv.read());
+      w.saturated = obs_write_flags.read() & 1;
+      w.depth_range = (obs_write_flags.read() >> 1) & 1;
+      if (!scoreboard_.table_write(w)) fail();
     }
     if (in_flight_ && ++busy_cycles_ > cycle_limit_) {
       std::cout << fmt::format("HANG seed {} triangle {}: no record after {} cycles\n  triangle {}\n",
@@ -248,6 +288,10 @@ class Bench : public sc_core::sc_module {
   sc_core::sc_signal<uint32_t> frag_x, frag_y, frag_flags;
   sc_core::sc_signal<uint64_t> frag_u, frag_v, rec_cycles;
   sc_core::sc_signal<uint32_t> rec_lines, rec_bands, rec_pixels, rec_flags;
+  sc_core::sc_signal<bool> obs_setup_valid, obs_write_valid;
+  sc_core::sc_signal<uint32_t> obs_setup_bits, obs_setup_g, obs_write_addr, obs_write_flags;
+  sc_core::sc_signal<uint64_t> obs_setup_box, obs_setup_lines, obs_write_tu, obs_write_tv,
+      obs_write_su, obs_write_sv;
 
   const std::vector<Job>& jobs_;
   Scoreboard& scoreboard_;
@@ -299,6 +343,8 @@ int run_bench(const std::vector<Job>& jobs, const Widths& widths) {
     if (!options.trace.empty()) std::cout << fmt::format("waveform: {}\n", options.trace);
   }
   std::cout << scoreboard.flag_census() << '\n';
+  std::cout << fmt::format("blocks compared: {} setups, {} table writes\n",
+                           scoreboard.setups_compared(), scoreboard.writes_compared());
   std::cout << fmt::format(
       "{} triangles, {} fragments compared, {} mismatches, RTL cycles {}, model cycles {}, "
       "{:.0f} cycles/s\n",

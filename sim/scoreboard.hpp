@@ -33,6 +33,19 @@ struct RtlFragment {
   uint32_t flags = 0;
 };
 
+// The setup engine's results as the RTL's observation ports show them.
+struct RtlSetup {
+  bool empty = true, x_major = true, no_lines = true, depth_range = false;
+  int64_t g = 0, major_lo = 0, major_count = 0, minor_lo = 0, minor_hi = 0;
+  int64_t pixel_line_lo = 0, pixel_line_hi = 0;
+};
+
+// One table write.
+struct RtlTableWrite {
+  int64_t address = 0, t_u = 0, t_v = 0, s_u = 0, s_v = 0;
+  bool saturated = false, depth_range = false;
+};
+
 struct RtlRecord {
   int64_t cycles = 0, lines = 0, bands = 0, pixels = 0;
   uint32_t flags = 0;
@@ -45,6 +58,8 @@ class Scoreboard {
   // Runs the model on the job: its fragments and record become the expectation.
   void begin(size_t index, const Job& job);
   // Each returns false at a mismatch; mismatch() then describes it.
+  bool setup(const RtlSetup& actual);
+  bool table_write(const RtlTableWrite& actual);
   bool fragment(const RtlFragment& actual);
   // stall_cycles: PIXEL cycles whose fragment the sink refused; the RTL counts
   // them, the model does not.
@@ -53,6 +68,8 @@ class Scoreboard {
   const std::string& mismatch() const { return mismatch_; }
   size_t triangle_index() const { return index_; }
   int64_t fragments_compared() const { return fragments_compared_; }
+  int64_t setups_compared() const { return setups_compared_; }
+  int64_t writes_compared() const { return writes_compared_; }
   int64_t model_cycles() const { return model_cycles_; }
   int64_t rtl_cycles() const { return rtl_cycles_; }
   int64_t mismatches() const { return mismatches_; }
@@ -70,8 +87,12 @@ class Scoreboard {
   const Job* job_ = nullptr;
   size_t index_ = 0;
   std::vector<Fragment> expected_;
+  BlockTrace trace_;
+  size_t next_write_ = 0;
+  bool setup_seen_ = false;
   TriangleRecord expected_record_;
   size_t next_ = 0;
+  int64_t setups_compared_ = 0, writes_compared_ = 0;
   int64_t fragments_compared_ = 0, model_cycles_ = 0, rtl_cycles_ = 0, mismatches_ = 0;
   std::string mismatch_;
   std::array<int64_t, flag::kCount> flagged_{};
