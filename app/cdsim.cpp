@@ -8,6 +8,7 @@
 #include <iostream>
 #include <unistd.h>
 
+#include "area.hpp"
 #include "common.hpp"
 #include "render.hpp"
 #include "size.hpp"
@@ -130,6 +131,8 @@ int main(int argc, char** argv) {
   CLI::App* render = add_render_command(app, render_options);
   SizeOptions size_options;
   CLI::App* size = add_size_command(app, size_options);
+  AreaOptions area_options;
+  CLI::App* area = add_area_command(app, area_options);
 
   try {
     app.parse(argc, argv);
@@ -143,6 +146,7 @@ int main(int argc, char** argv) {
     if (*sweep) return run_sweep_command(sweep_options);
     if (*render) return run_render_command(render_options);
     if (*size) return run_size_command(size_options);
+    if (*area) return run_area_command(area_options);
     if (*hard) {
       for (const HardCase& c : hard_cases()) fmt::print("hard:{:<15} {}\n", c.name, c.expected);
       return 0;

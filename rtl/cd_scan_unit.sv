@@ -15,7 +15,10 @@
 module cd_scan_unit #(
   // The table holds TableDepth << MaxDensityLog2 lines: the densest design the
   // unit serves (2 for cd-dense4; 0 when only m = 1 designs run on it).
-  parameter int MaxDensityLog2 = 2
+  parameter int MaxDensityLog2 = 2,
+  // 0 builds the unit without the linear correction (cd-none, cd-dense2,
+  // cd-dense4): no neighbour read, no correction multiplies, no guard lines.
+  parameter bit HasCorrection = 1'b1
 ) (
   input  logic        clk_i,
   input  logic        rst_ni,
@@ -157,7 +160,7 @@ module cd_scan_unit #(
     .viewport_width_i  (viewport_width_i[13:0]),
     .viewport_height_i (viewport_height_i[13:0]),
     .density_log2_i,
-    .correction_i,
+    .correction_i      (correction_i && HasCorrection),
     .setup_i           (state_q == StSetup),
     .stage_count_i     (8'(count_q)),
     .empty_o           (setup_empty),
@@ -243,7 +246,9 @@ module cd_scan_unit #(
   logic signed [OutBits-1:0] frag_u, frag_v;
   logic [7:0]         frag_flags;
 
-  correction_adder u_correction_adder (
+  correction_adder #(
+    .HasCorrection(HasCorrection)
+  ) u_correction_adder (
     .valid_i           (state_q == StPixel),
     .own_entry_i       (own_entry),
     .neighbour_entry_i (neighbour_entry),
@@ -307,7 +312,7 @@ module cd_scan_unit #(
           state_d = StSetup;
           count_d = '0;
           density_log2_d = density_log2_i;
-          correction_d = correction_i;
+          correction_d = correction_i && HasCorrection;
           cycles_d = '0;
           lines_d = '0;
           bands_d = '0;

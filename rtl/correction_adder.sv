@@ -8,7 +8,9 @@
 `include "cd_widths.svh"
 `default_nettype none
 
-module correction_adder (
+module correction_adder #(
+  parameter bit HasCorrection = 1'b1  // 0: no correction hardware (designs without it)
+) (
   input  logic                          valid_i,
   input  logic [`CD_WORD_BITS-1:0]      own_entry_i,
   input  logic [`CD_WORD_BITS-1:0]      neighbour_entry_i,
@@ -78,7 +80,7 @@ module correction_adder (
       other_v = line_value(neighbour_entry_i[`CD_WORD_TV_LSB +: TBits],
                            neighbour_entry_i[`CD_WORD_SV_LSB +: SBits], offset_i);
       // A flagged neighbour is never used: it would spread a bad value.
-      neighbour_usable = correct_i && !neighbour_entry_i[`CD_WORD_SATURATED_BIT] &&
+      neighbour_usable = HasCorrection && correct_i && !neighbour_entry_i[`CD_WORD_SATURATED_BIT] &&
                          !neighbour_entry_i[`CD_WORD_DEPTH_RANGE_BIT];
       sum_u = SumBits'(own_u);
       sum_v = SumBits'(own_v);
@@ -100,7 +102,7 @@ module correction_adder (
     if (valid_i) begin
       flags_o[`CD_FLAG_TABLE_SATURATED] = own_entry_i[`CD_WORD_SATURATED_BIT];
       flags_o[`CD_FLAG_DEPTH_RANGE] = own_entry_i[`CD_WORD_DEPTH_RANGE_BIT];
-      flags_o[`CD_FLAG_NEIGHBOUR_DROPPED] = correct_i && !neighbour_usable;
+      flags_o[`CD_FLAG_NEIGHBOUR_DROPPED] = HasCorrection && correct_i && !neighbour_usable;
       flags_o[`CD_FLAG_OUTPUT_SATURATED] = saturated_u || saturated_v;
     end
   end

@@ -909,8 +909,8 @@ module setup_engine #(
       q_positive = depth_out ? FillQBits'(1) : q_line_q;
       exponent = '0;
       for (int i = 0; i < FillQBits - 1; i++) if (q_positive[i]) exponent = ExponentBits'(i);
-      if (32'(exponent) >= RecipBits) mantissa = (RecipBits+1)'(q_positive >> (32'(exponent) - RecipBits));
-      else mantissa = (RecipBits+1)'(q_positive << (RecipBits - 32'(exponent)));
+      if (32'(exponent) >= RecipBits) mantissa = (RecipBits+1)'(q_positive >> (exponent - ExponentBits'(RecipBits)));
+      else mantissa = (RecipBits+1)'(q_positive << (ExponentBits'(RecipBits) - exponent));
       issue_tag = {fill_addr_i, depth_out, exponent, u_line_q, v_line_q};
     end
   end

@@ -28,24 +28,29 @@ module shift_round #(
   localparam logic signed [WideBits-1:0] OutMax = (WideBits'(1) <<< (OutBits - 1)) - WideBits'(1);
   localparam logic signed [WideBits-1:0] OutMin = -(WideBits'(1) <<< (OutBits - 1));
 
+  // Shift amounts need only enough bits to reach past WideBits.
+  localparam int AmountBits = $clog2(WideBits + 1) + 1;
   logic signed [WideBits-1:0] wide;
   logic signed [WideBits-1:0] half;
   logic signed [31:0]         shift;
+  logic [AmountBits-1:0]      left, right;
 
   always_comb begin
     shift = 32'(shift_i);
+    left = AmountBits'(-shift);
+    right = AmountBits'(shift);
     wide = '0;
     half = '0;
     if (!enable_i) begin
       wide = '0;
     end else if (shift <= 0) begin
       wide = WideBits'(in_i);
-      wide = wide <<< (-shift);
+      wide = wide <<< left;
     end else if (shift >= 32'(InBits)) begin
       wide = '0;
     end else begin
-      half = WideBits'(1) <<< (shift - 1);
-      wide = (WideBits'(in_i) + half) >>> shift;
+      half = WideBits'(1) <<< (right - AmountBits'(1));
+      wide = (WideBits'(in_i) + half) >>> right;
     end
     saturated_o = wide > OutMax || wide < OutMin;
     out_o = OutBits'(saturated_o ? (wide > OutMax ? OutMax : OutMin) : wide);

@@ -1,0 +1,386 @@
+#include "area.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <map>
+#include <regex>
+#include <sstream>
+#include <thread>
+
+#include "build_info.hpp"
+#include "derived_widths.hpp"
+
+namespace cdsim {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Bumped whenever the flow below changes, so that cached results are redone.
+constexpr const char* kFlowVersion = "area-flow-2";
+
+uint64_t fnv1a(const std::string& text, uint64_t hash = 1469598103934665603ull) {
+  for (unsigned char c : text) hash = (hash ^ c) * 1099511628211ull;
+  return hash;
+}
+
+std::string read_file(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error(fmt::format("{}: cannot read", path.string()));
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+void write_file(const fs::path& path, const std::string& text) {
+  const fs::path partial = path.string() + ".partial";
+  {
+    std::ofstream out(partial, std::ios::binary);
+    out << text;
+    out.close();
+    if (!out) throw std::runtime_error(fmt::format("{}: cannot write", partial.string()));
+  }
+  fs::rename(partial, path);  // atomic: a reader never sees half a file
+}
+
+fs::path default_cache_dir() {
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return fs::path(xdg) / "cdsim/area";
+  if (const char* home = std::getenv("HOME"); home && *home) return fs::path(home) / ".cache/cdsim/area";
+  return fs::temp_directory_path() / "cdsim-area";
+}
+
+int log2_of(int value) {
+  int bits = 0;
+  while ((1 << bits) < value) ++bits;
+  return bits;
+}
+
+// One module of `stat -liberty` output: its own cell area, own flip-flops, and
+// how many instances of each submodule it holds.
+struct ModuleStat {
+  double own_area = 0;
+  int64_t own_flops = 0;
+  std::map<std::string, int64_t> cells;       // cell type -> count
+  std::map<std::string, int64_t> submodules;  // the cells that are modules
+};
+
+// Yosys writes "=== cd_scan_unit ===" but "Chip area for module '\cd_scan_unit'".
+std::string strip_escape(const std::string& name) {
+  return !name.empty() && name[0] == '\\' ? name.substr(1) : name;
+}
+
+// "$paramod$0123\shift_round", "$paramod\setup_engine\SramDepth=..." and
+// "\column_walker" all name a module by the part after the first backslash.
+std::string base_name(const std::string& module) {
+  const size_t slash = module.find('\\');
+  if (slash == std::string::npos) return module;
+  const std::string rest = module.substr(slash + 1);
+  return rest.substr(0, rest.find('\\'));
+}
+
+std::map<std::string, ModuleStat> parse_stat(const std::string& log) {
+  std::map<std::string, ModuleStat> modules;
+  // Only the last statistics (the mapped netlist) count.
+  const size_t last = log.rfind("Printing statistics.");
+  std::istringstream in(last == std::string::npos ? log : log.substr(last));
+  std::string line, current;
+  bool in_cells = false;
+  static const std::regex header(R"(^=== (.+) ===$)");
+  static const std::regex cell(R"(^\s+(\S+)\s+(\d+)$)");
+  static const std::regex area(R"(^\s+Chip area for module '(.+)': ([0-9.eE+-]+)$)");
+  std::smatch m;
+  while (std::getline(in, line)) {
+    if (std::regex_match(line, m, header)) {
+      current = strip_escape(m[1]);
+      modules[current];
+      in_cells = false;
+    } else if (line.find("Number of cells:") != std::string::npos) {
+      in_cells = !current.empty();
+    } else if (std::regex_match(line, m, area)) {
+      modules[strip_escape(m[1])].own_area = std::stod(m[2]);
+      in_cells = false;
+    } else if (in_cells && std::regex_match(line, m, cell)) {
+      const std::string type = strip_escape(m[1]);
+      const int64_t count = std::stoll(m[2]);
+      if (type.rfind("DFF", 0) == 0) modules[current].own_flops += count;
+      modules[current].cells[type] += count;
+    } else if (line.find("design hierarchy") != std::string::npos) {
+      break;
+    }
+  }
+  for (auto& [name, stat] : modules)
+    for (const auto& [type, count] : stat.cells)
+      if (modules.count(type)) stat.submodules[type] = count;
+  return modules;
+}
+
+struct Subtree {
+  double area = 0;
+  int64_t flops = 0;
+};
+
+Subtree subtree(const std::map<std::string, ModuleStat>& modules, const std::string& name) {
+  Subtree total;
+  const auto it = modules.find(name);
+  if (it == modules.end()) return total;
+  total.area = it->second.own_area;
+  total.flops = it->second.own_flops;
+  for (const auto& [sub, count] : it->second.submodules) {
+    const Subtree s = subtree(modules, sub);
+    total.area += static_cast<double>(count) * s.area;
+    total.flops += count * s.flops;
+  }
+  return total;
+}
+
+std::string find_module(const std::map<std::string, ModuleStat>& modules, const std::string& base) {
+  for (const auto& [name, stat] : modules)
+    if (base_name(name) == base) return name;
+  throw std::runtime_error(fmt::format("yosys statistics list no module '{}'", base));
+}
+
+double liberty_cell_area(const std::string& liberty, const std::string& cell) {
+  const std::string text = read_file(liberty);
+  const std::regex pattern("cell \\(" + cell + "\\) \\{\\s*area : ([0-9.]+)");
+  std::smatch m;
+  if (!std::regex_search(text, m, pattern))
+    throw std::runtime_error(fmt::format("{}: no area for cell {}", liberty, cell));
+  return std::stod(m[1]);
+}
+
+int run_yosys(const fs::path& script, const fs::path& log) {
+  const std::string command =
+      fmt::format("yosys -q -l '{}' -s '{}' > /dev/null 2>&1", log.string(), script.string());
+  return std::system(command.c_str());
+}
+
+std::string yosys_error(const fs::path& log) {
+  std::ifstream in(log);
+  std::string line, error;
+  while (std::getline(in, line))
+    if (line.find("ERROR") != std::string::npos || line.find("Assertion failed") != std::string::npos)
+      error = line;
+  return error.empty() ? "see the log" : error;
+}
+
+}  // namespace
+
+AreaReport synthesise_area(const Design& design, const Widths& widths, const AreaOptions& options) {
+  if (design.kind != Design::Kind::ConstantDepth)
+    throw std::invalid_argument(fmt::format(
+        "design '{}' has no RTL yet; cdsim area synthesises cd-none, cd-linear, cd-dense2, "
+        "cd-dense4 and cd-dense2-linear",
+        design.name));
+  validate(widths);
+  if (!fs::exists(options.liberty))
+    throw std::runtime_error(fmt::format(
+        "{}: no such liberty file (scripts/setup installs qflow-tech-osu018)", options.liberty));
+  const DerivedWidths derived = derive(widths);
+  const int density_log2 = log2_of(design.density);
+  const int has_correction = design.correction ? 1 : 0;
+
+  // Every RTL source, in name order, so that the hash is stable.
+  const fs::path rtl_dir = kRtlDir;
+  std::vector<fs::path> sources;
+  for (const auto& entry : fs::directory_iterator(rtl_dir))
+    if (entry.path().extension() == ".sv") sources.push_back(entry.path());
+  std::sort(sources.begin(), sources.end());
+  const std::string header = rtl_header(widths, "area");
+  uint64_t hash = fnv1a(kFlowVersion);
+  hash = fnv1a(header, hash);
+  hash = fnv1a(fmt::format("{} {} {}", density_log2, has_correction, options.liberty), hash);
+  for (const fs::path& source : sources) hash = fnv1a(read_file(source), hash);
+
+  const fs::path cache = options.cache_dir.empty() ? default_cache_dir() : fs::path(options.cache_dir);
+  const fs::path dir = cache / fmt::format("{:016x}", hash);
+  fs::create_directories(dir);
+  const fs::path result_path = dir / "result.json";
+
+  AreaReport report;
+  report.design = design.name;
+  report.widths = widths;
+  report.log_path = (dir / "unit.log").string();
+  const int64_t sram_depth = int64_t{widths.table_depth} << density_log2;
+  report.sram_bits = sram_depth * derived.word_bits;
+  report.sram_area_um2 =
+      static_cast<double>(report.sram_bits) * options.sram_cell_um2 / options.sram_efficiency;
+  const double nand2 = liberty_cell_area(options.liberty, "NAND2X1");
+
+  nlohmann::json synthesised;
+  if (fs::exists(result_path)) {
+    synthesised = nlohmann::json::parse(read_file(result_path));
+    report.cached = true;
+  } else {
+    write_file(dir / "cd_widths.svh", header);
+    std::string unit_sources;
+    for (const fs::path& source : sources)
+      if (source.filename() != "scanline_table.sv") unit_sources += " " + source.string();
+    const std::string L = options.liberty;
+    const std::string include = fmt::format("-I{} -I{}", dir.string(), rtl_dir.string());
+    // The unit, with the scanline table as a black box (it is SRAM).
+    write_file(dir / "unit.ys", fmt::format(
+        "read_verilog -sv -DSYNTHESIS {inc}{src}\n"
+        "read_verilog -sv -lib {inc} {rtl}/scanline_table.sv\n"
+        "chparam -set MaxDensityLog2 {m} -set HasCorrection {c} cd_scan_unit\n"
+        "hierarchy -check -top cd_scan_unit\n"
+        "proc\n"
+        "select -assert-none t:$dlatch t:$adlatch t:$dlatchsr t:$sr\n"
+        "opt -fast\n"
+        "select -assert-none t:$div t:$mod t:$divfloor t:$modfloor\n"
+        "wreduce\nalumacc\nopt -fast\nmemory -nomap\ntechmap\n"
+        "dfflibmap -liberty {L}\nabc -fast -liberty {L}\nopt_clean\n"
+        "select -assert-none t:$* t:$paramod* %d\n"
+        "stat -liberty {L}\n",
+        fmt::arg("inc", include), fmt::arg("src", unit_sources), fmt::arg("rtl", rtl_dir.string()),
+        fmt::arg("m", density_log2), fmt::arg("c", has_correction), fmt::arg("L", L)));
+    // The same table from flip-flops, synthesised at up to 64 lines.
+    const int64_t flop_lines = std::min<int64_t>(sram_depth, 64);
+    write_file(dir / "table.ys", fmt::format(
+        "read_verilog -sv {inc} {rtl}/scanline_table.sv\n"
+        "chparam -set Depth {d} -set WordBits {w} scanline_table\n"
+        "hierarchy -check -top scanline_table\n"
+        "proc\nopt -fast\nmemory\nopt -fast\ntechmap\n"
+        "dfflibmap -liberty {L}\nabc -fast -liberty {L}\nopt_clean\n"
+        "select -assert-none t:$* t:$paramod* %d\n"
+        "stat -liberty {L}\n",
+        fmt::arg("inc", include), fmt::arg("rtl", rtl_dir.string()), fmt::arg("d", flop_lines),
+        fmt::arg("w", derived.word_bits), fmt::arg("L", L)));
+
+    std::cerr << fmt::format("area: synthesising {} with yosys onto {} (log {})\n", design.name,
+                             fs::path(L).filename().string(), report.log_path);
+    const auto start = std::chrono::steady_clock::now();
+    int unit_status = 0, table_status = 0;
+    std::thread table([&] { table_status = run_yosys(dir / "table.ys", dir / "table.log"); });
+    unit_status = run_yosys(dir / "unit.ys", dir / "unit.log");
+    table.join();
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (unit_status != 0)
+      throw std::runtime_error(fmt::format("yosys failed on the unit: {} ({})",
+                                           yosys_error(dir / "unit.log"), report.log_path));
+    if (table_status != 0)
+      throw std::runtime_error(fmt::format("yosys failed on the flip-flop table: {} ({})",
+                                           yosys_error(dir / "table.log"), (dir / "table.log").string()));
+
+    const auto unit = parse_stat(read_file(dir / "unit.log"));
+    const auto flop_table = parse_stat(read_file(dir / "table.log"));
+    const std::string top = find_module(unit, "cd_scan_unit");
+    const std::string setup = find_module(unit, "setup_engine");
+    const std::string recip = find_module(unit, "reciprocal");
+    const Subtree setup_tree = subtree(unit, setup), recip_tree = subtree(unit, recip);
+    const Subtree walker = subtree(unit, find_module(unit, "column_walker"));
+    const Subtree adder = subtree(unit, find_module(unit, "correction_adder"));
+    const auto& control = unit.at(top);
+    const Subtree table_tree = subtree(flop_table, find_module(flop_table, "scanline_table"));
+    synthesised = {
+        {"seconds", seconds},
+        {"blocks",
+         {{{"name", "setup engine"}, {"area_um2", setup_tree.area - recip_tree.area},
+           {"flops", setup_tree.flops - recip_tree.flops}},
+          {{"name", "reciprocal"}, {"area_um2", recip_tree.area}, {"flops", recip_tree.flops}},
+          {{"name", "column walker"}, {"area_um2", walker.area}, {"flops", walker.flops}},
+          {{"name", "correction adder"}, {"area_um2", adder.area}, {"flops", adder.flops}},
+          {{"name", "control"}, {"area_um2", control.own_area}, {"flops", control.own_flops}}}},
+        {"flop_table_lines", flop_lines},
+        {"flop_table_area_um2", table_tree.area},
+    };
+    write_file(result_path, synthesised.dump(2) + "\n");
+  }
+  report.synthesis_seconds = synthesised.at("seconds").get<double>();
+  for (const auto& b : synthesised.at("blocks")) {
+    BlockArea block;
+    block.name = b.at("name").get<std::string>();
+    block.area_um2 = b.at("area_um2").get<double>();
+    block.flops = b.at("flops").get<int64_t>();
+    block.nand2_eq = block.area_um2 / nand2;
+    report.logic_area_um2 += block.area_um2;
+    report.blocks.push_back(block);
+  }
+  report.flop_table_lines_synthesised = synthesised.at("flop_table_lines").get<int64_t>();
+  report.flop_table_area_um2 = synthesised.at("flop_table_area_um2").get<double>() *
+                               static_cast<double>(sram_depth) /
+                               static_cast<double>(report.flop_table_lines_synthesised);
+  report.total_area_um2 = report.logic_area_um2 + report.sram_area_um2;
+  return report;
+}
+
+nlohmann::json area_json(const AreaReport& r, const AreaOptions& options) {
+  nlohmann::json widths;
+  for (const auto& p : param_table()) widths[p.name] = r.widths.*(p.field);
+  nlohmann::json blocks = nlohmann::json::array();
+  for (const BlockArea& b : r.blocks)
+    blocks.push_back({{"name", b.name}, {"area_um2", b.area_um2}, {"nand2_eq", b.nand2_eq},
+                      {"flops", b.flops}});
+  return {{"design", r.design},
+          {"widths", widths},
+          {"blocks", blocks},
+          {"logic_area_um2", r.logic_area_um2},
+          {"sram_bits", r.sram_bits},
+          {"sram_area_um2", r.sram_area_um2},
+          {"sram_model", {{"bit_cell_um2", options.sram_cell_um2}, {"array_efficiency", options.sram_efficiency}}},
+          {"flop_table_area_um2", r.flop_table_area_um2},
+          {"flop_table_lines_synthesised", r.flop_table_lines_synthesised},
+          {"total_area_um2", r.total_area_um2},
+          {"synthesis_seconds", r.synthesis_seconds},
+          {"liberty", options.liberty},
+          {"build", kBuildRevision}};
+}
+
+CLI::App* add_area_command(CLI::App& app, AreaOptions& options) {
+  CLI::App* cmd = app.add_subcommand(
+      "area", "synthesise the unit with Yosys onto osu018 cells: area per block, table as SRAM");
+  cmd->add_option("--design", options.design, "constant-depth design to synthesise")
+      ->capture_default_str();
+  cmd->add_option("--set", options.settings, "NAME=VALUE width or parameter (cdsim widths)");
+  cmd->add_option("--json", options.json_path, "also write the report as JSON to this file");
+  cmd->add_option("--cache", options.cache_dir,
+                  "cache folder (default $XDG_CACHE_HOME/cdsim/area or ~/.cache/cdsim/area)");
+  cmd->add_option("--liberty", options.liberty, "standard-cell liberty file")->capture_default_str();
+  cmd->add_option("--sram-cell-um2", options.sram_cell_um2, "SRAM bit-cell area (docs/area.md)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--sram-efficiency", options.sram_efficiency,
+                  "SRAM array efficiency: bit cells / macro area (docs/area.md)")
+      ->check(CLI::Range(0.05, 1.0))
+      ->capture_default_str();
+  return cmd;
+}
+
+int run_area_command(const AreaOptions& options) {
+  Widths widths;
+  for (const std::string& s : options.settings) apply_setting(widths, s);
+  const Design& design = find_design(options.design);
+  const AreaReport r = synthesise_area(design, widths, options);
+  fmt::print("area of {} at {}\n", r.design, describe(r.widths));
+  fmt::print("build {}, liberty {}, {}\n", kBuildRevision, options.liberty,
+             r.cached ? fmt::format("cached (synthesised in {:.0f} s)", r.synthesis_seconds)
+                      : fmt::format("synthesised in {:.0f} s", r.synthesis_seconds));
+  fmt::print("\n{:<18} {:>14} {:>11} {:>8}\n", "block", "area um^2", "NAND2-eq", "flops");
+  for (const BlockArea& b : r.blocks)
+    fmt::print("{:<18} {:>14.0f} {:>11.0f} {:>8}\n", b.name, b.area_um2, b.nand2_eq, b.flops);
+  fmt::print("{:<18} {:>14.0f}\n", "logic total", r.logic_area_um2);
+  fmt::print("\nscanline table: {} bits ({} lines x {} bits, flags included)\n", r.sram_bits,
+             r.sram_bits / derive(r.widths).word_bits, derive(r.widths).word_bits);
+  fmt::print("  as SRAM:        {:>14.0f} um^2 ({} um^2 bit cell / {} array efficiency)\n",
+             r.sram_area_um2, options.sram_cell_um2, options.sram_efficiency);
+  fmt::print("  as flip-flops:  {:>14.0f} um^2 (synthesised at {} lines{})\n", r.flop_table_area_um2,
+             r.flop_table_lines_synthesised,
+             r.flop_table_lines_synthesised * derive(r.widths).word_bits == r.sram_bits
+                 ? ""
+                 : ", scaled linearly to the full depth");
+  fmt::print("total (logic + SRAM table): {:.0f} um^2\n", r.total_area_um2);
+  if (!options.json_path.empty()) {
+    write_file(options.json_path, area_json(r, options).dump(2) + "\n");
+    fmt::print("wrote {}\n", options.json_path);
+  }
+  return 0;
+}
+
+}  // namespace cdsim

@@ -1,0 +1,58 @@
+// cdsim area: synthesises the scan unit's RTL at given widths with Yosys onto
+// the osu018 standard cells (Debian's qflow-tech-osu018, 0.18 um) and reports
+// the area per block, the scanline table as SRAM, and the same table built from
+// flip-flops. Results are cached by a hash of the RTL sources, the design, the
+// widths and the flow. docs/area.md describes the flow and its assumptions.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "design.hpp"
+#include "widths.hpp"
+
+namespace cdsim {
+
+struct BlockArea {
+  std::string name;
+  double area_um2 = 0;
+  double nand2_eq = 0;
+  int64_t flops = 0;
+};
+
+struct AreaReport {
+  std::string design;
+  Widths widths;
+  std::vector<BlockArea> blocks;  // setup engine, reciprocal, column walker, correction adder, control
+  double logic_area_um2 = 0;
+  int64_t sram_bits = 0;
+  double sram_area_um2 = 0;
+  double flop_table_area_um2 = 0;  // the same table from flip-flops
+  int64_t flop_table_lines_synthesised = 0;
+  double total_area_um2 = 0;       // logic + SRAM
+  double synthesis_seconds = 0;
+  bool cached = false;
+  std::string log_path;
+};
+
+struct AreaOptions {
+  std::string design = "cd-linear";
+  std::vector<std::string> settings;
+  std::string json_path;
+  std::string cache_dir;  // default: $XDG_CACHE_HOME/cdsim/area or ~/.cache/cdsim/area
+  std::string liberty = "/usr/share/qflow/tech/osu018/osu018_stdcells.lib";
+  double sram_cell_um2 = 4.65;   // docs/area.md: 6T bit cell, 0.18 um logic process
+  double sram_efficiency = 0.65; // cell array / macro area
+};
+
+// Synthesises (or reads from the cache). Throws std::runtime_error with Yosys's
+// own message and the log's path when synthesis fails or a check fails.
+AreaReport synthesise_area(const Design& design, const Widths& widths, const AreaOptions& options);
+nlohmann::json area_json(const AreaReport& report, const AreaOptions& options);
+
+CLI::App* add_area_command(CLI::App& app, AreaOptions& options);
+int run_area_command(const AreaOptions& options);
+
+}  // namespace cdsim
