@@ -19,7 +19,32 @@ struct ColumnState {
   Span span;                 // covered pixels along the column, clipped to the box
 };
 
+// The walker as the hardware runs it: column by column from the first, m g o
+// and each edge's span end accumulated (Setup::edge_trackers), no division.
+class ColumnWalker {
+ public:
+  ColumnWalker(const Setup& setup, const Widths& widths) : setup_(setup), widths_(widths) {
+    restart();
+  }
+  void restart();  // column 0: the start of a band
+  void advance();  // the next column
+  ColumnState column() const;
+
+ private:
+  const Setup& setup_;
+  const Widths& widths_;
+  int64_t offset_ = 0;
+  int64_t exact_ = 0;  // m g o in g_frac fraction bits
+  std::array<int64_t, 3> bound_{}, remainder_{};
+};
+
+// The same column computed directly: covered_span by division. The tests
+// check that the walker's spans equal it.
 ColumnState walk_column(const Setup& setup, int64_t offset, const Widths& widths);
+
+// The pixels of a column whose line lies in [band_lo, band_hi] (line =
+// m (minor - minor_lo) - r), within the column's span.
+Span clip_to_band(const Setup& setup, const ColumnState& column, int64_t band_lo, int64_t band_hi);
 
 // Line index of the pixel minor_index in this column.
 inline int64_t line_index(const Setup& setup, const ColumnState& column, int64_t minor_index) {

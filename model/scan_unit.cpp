@@ -85,30 +85,19 @@ TriangleRecord ScanUnit::run_constant_depth(const Setup& s, std::vector<Fragment
 
     // Walk: one cycle per column, plus one per pixel emitted in this band.
     record.walk_cycles += s.major_count;
-    for (int64_t offset = 0; offset < s.major_count; ++offset) {
-      const ColumnState c = walk_column(s, offset, widths_);
-      // Pixels of this column whose line lies in the band.
-      const int64_t band_first = s.minor_lo + static_cast<int64_t>(fx::ceil_div(band_lo + c.line_shift, s.density));
-      const int64_t band_last = s.minor_lo + static_cast<int64_t>(fx::floor_div(band_hi + c.line_shift, s.density));
-      const int64_t first = std::max(c.span.lo, band_first);
-      const int64_t last = std::min(c.span.hi, band_last);
-      for (int64_t minor = first; minor <= last; ++minor) {
+    ColumnWalker walker(s, widths_);
+    for (int64_t offset = 0; offset < s.major_count; ++offset, walker.advance()) {
+      const ColumnState c = walker.column();
+      const Span pixels = clip_to_band(s, c, band_lo, band_hi);
+      for (int64_t minor = pixels.lo; minor <= pixels.hi; ++minor) {
         const int64_t line = line_index(s, c, minor);
-        const TableEntry& own_entry = table_.read(line);
-        const LineValue own = line_value(own_entry, c.offset, widths_);
-        uint32_t entry_flags = own_entry.flags;
-        LineValue other = own;
-        if (s.correction && c.direction != 0) {
-          const TableEntry& neighbour = table_.read(line + c.direction);
-          if (neighbour.flags == 0)
-            other = line_value(neighbour, c.offset, widths_);
-          else
-            entry_flags |= flag::kNeighbourDropped;
-        }
-        const CorrectedValue value = correction_adder(own, other, c.weight, widths_);
-        fragments->push_back(make_fragment(s, c, minor, value));
-        fragments->back().flags |= entry_flags;
-        record.flags |= fragments->back().flags;
+        const bool correct = s.correction && c.direction != 0;
+        const CorrectedFragment out =
+            correction_adder(table_.read(line), correct ? &table_.read(line + c.direction) : nullptr,
+                             c.offset, c.weight, widths_);
+        fragments->push_back(make_fragment(s, c, minor, out.value));
+        fragments->back().flags = out.flags;
+        record.flags |= out.flags;
         ++record.pixels;
       }
     }
@@ -120,8 +109,9 @@ TriangleRecord ScanUnit::run_constant_depth(const Setup& s, std::vector<Fragment
 
 TriangleRecord ScanUnit::run_divide(const Setup& s, std::vector<Fragment>* fragments) {
   TriangleRecord record;
-  for (int64_t offset = 0; offset < s.major_count; ++offset) {
-    const ColumnState c = walk_column(s, offset, widths_);
+  ColumnWalker walker(s, widths_);
+  for (int64_t offset = 0; offset < s.major_count; ++offset, walker.advance()) {
+    const ColumnState c = walker.column();
     for (int64_t minor = c.span.lo; minor <= c.span.hi; ++minor) {
       const CorrectedValue value =
           divide_pixel(s, offset, minor - s.minor_lo, widths_, &record.flags);
@@ -140,8 +130,9 @@ TriangleRecord ScanUnit::run_kim(const Setup& s, std::vector<Fragment>* fragment
   // Each column: one cycle, and for a non-empty span one full division
   // (out_int quotient bits, one per cycle) to initialise I and R.
   record.walk_cycles = s.major_count;
-  for (int64_t offset = 0; offset < s.major_count; ++offset) {
-    const ColumnState c = walk_column(s, offset, widths_);
+  ColumnWalker walker(s, widths_);
+  for (int64_t offset = 0; offset < s.major_count; ++offset, walker.advance()) {
+    const ColumnState c = walker.column();
     if (c.span.empty()) continue;
     record.walk_cycles += widths_.out_int;
     int64_t previous_u = 0, previous_v = 0;
@@ -174,8 +165,9 @@ TriangleRecord ScanUnit::run_affine(const UnitTriangle& triangle, const Setup& s
   const int64_t segment = design_.subdivision;
   const AffinePlanes planes = affine_setup(triangle, s, widths_);
   const fx::Format exact_format = affine_format(widths_);
-  for (int64_t offset = 0; offset < s.major_count; ++offset) {
-    const ColumnState c = walk_column(s, offset, widths_);
+  ColumnWalker walker(s, widths_);
+  for (int64_t offset = 0; offset < s.major_count; ++offset, walker.advance()) {
+    const ColumnState c = walker.column();
     if (c.span.empty()) continue;
     const int64_t length = c.span.hi - c.span.lo + 1;
     record.walk_cycles += length;

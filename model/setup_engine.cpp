@@ -32,6 +32,33 @@ Wide divide_nearest(Wide numerator, Wide denominator) {
   return fx::floor_div(2 * numerator + denominator, 2 * denominator);
 }
 
+// The setup engine's serial dividers (stage C/D of rtl/setup_engine.sv): per
+// edge the span end at the first column and its step per column.
+std::array<EdgeTracker, 3> edge_trackers(const EdgeSet& e, bool x_major, int64_t major_lo,
+                                         const DerivedWidths& dw) {
+  std::array<EdgeTracker, 3> trackers{};
+  const int sp = e.subpixel_bits;
+  const int64_t one = int64_t{1} << sp;
+  const int64_t half = one >> 1;
+  for (size_t i = 0; i < 3; ++i) {
+    const int64_t fixed = x_major ? e.a[i] : e.b[i];
+    const int64_t free = x_major ? e.b[i] : e.a[i];
+    const int64_t n = fixed * pixel_centre(major_lo, sp) + free * half + e.c[i] - e.threshold[i];
+    fits_or_throw(n, dw.edge_n_bits, "edge value at the first column");
+    EdgeTracker& t = trackers[i];
+    t.kind = free > 0 ? 1 : (free < 0 ? 2 : 0);
+    const int64_t free_abs = free < 0 ? -free : free;
+    t.step = (t.kind == 0 ? 1 : free_abs) * one;
+    t.bound = static_cast<int64_t>(fx::floor_div(n, t.step));
+    t.remainder = n - t.bound * t.step;
+    t.slope = static_cast<int64_t>(fx::floor_div(fixed * one, t.step));
+    t.slope_remainder = fixed * one - t.slope * t.step;
+    fits_or_throw(t.bound, dw.edge_bound_bits, "span end at the first column");
+    fits_or_throw(t.slope, dw.edge_slope_bits, "span end step per column");
+  }
+  return trackers;
+}
+
 }  // namespace
 
 Setup setup_engine(const UnitTriangle& t, const Design& design, const Widths& w,
@@ -181,6 +208,7 @@ Setup setup_engine(const UnitTriangle& t, const Design& design, const Widths& w,
     fits_or_throw(line_lo, dw.line_bits, "first pixel line");
     fits_or_throw(line_hi, dw.line_bits, "last pixel line");
   }
+  s.edge_trackers = edge_trackers(s.edges, s.x_major, s.major_lo, dw);
   s.pixel_line_lo = static_cast<int64_t>(line_lo);
   s.pixel_line_hi = static_cast<int64_t>(line_hi);
   return s;

@@ -4,6 +4,7 @@
 // the caller (scan_unit).
 #pragma once
 
+#include <array>
 #include <cstdint>
 
 #include "coverage.hpp"
@@ -25,6 +26,18 @@ struct Plane {
   }
 };
 
+// One edge's span end, tracked from column to column without division (the
+// RTL's column walker): floor(N / step) and its remainder at the first column,
+// and the per-column step of floor(.) with its remainder (docs/rtl.md).
+struct EdgeTracker {
+  int kind = 0;            // 0: free coefficient 0; 1: bounds the span below; 2: above
+  int64_t bound = 0;       // floor(N / step), N = E - threshold at the column's pixel 0
+  int64_t remainder = 0;   // N - bound step, in [0, step)
+  int64_t step = 1;        // |free coefficient| 2^subpixel_bits (2^subpixel_bits for kind 0)
+  int64_t slope = 0;       // floor(fixed 2^subpixel_bits / step)
+  int64_t slope_remainder = 0;
+};
+
 struct Setup {
   bool empty = true;          // zero area or no pixel centre in the box: nothing to walk
   bool x_major = true;        // lines are x-major: the walker visits columns
@@ -39,6 +52,7 @@ struct Setup {
   fx::Wide step_u = 0, step_v = 0;  // numerators of S: U_major + g U_minor, normalised
   int64_t pixel_line_lo = 0, pixel_line_hi = -1;  // lines covered pixels can use
   EdgeSet edges;
+  std::array<EdgeTracker, 3> edge_trackers{};  // per edge, at the first column (major_lo)
   uint32_t flags = 0;
   int fill_q_bits = 127, fill_uv_bits = 127;  // the fill accumulators' widths (derived_widths)
 };

@@ -6,7 +6,7 @@
 // Cycles of a triangle (docs/rtl.md): one per cycle spent in SETUP, FILL,
 // COLUMN, PIXEL or SCAN (an empty walk), from the cycle after the triangle is
 // accepted to the cycle before its record is offered. Without back-pressure
-// that is the model's count exactly: setup_cycles + per band (lines +
+// that is the model's count exactly: SetupCycles (CD_SETUP_CYCLES) + per band (lines +
 // recip_latency) + per band (columns) + pixels. A PIXEL cycle whose fragment
 // is not taken is a stall and is counted too.
 `include "cd_widths.svh"

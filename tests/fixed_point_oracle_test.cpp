@@ -374,7 +374,7 @@ TEST(FixedPointOracle, NarrowMatchesScFixOnEveryFormatAndMode) {
 
 // Sources wider than 64 bits, as the model produces them (a Wide product narrowed to a
 // table or output format: Round::Nearest, Overflow::Saturate in setup_engine.cpp,
-// divide_datapath.cpp, correction_adder.cpp).
+// divide_datapath.cpp, correction_adder.hpp).
 TEST(FixedPointOracle, NarrowFromWideProductsMatchesScFix) {
   long long samples = 0;
   long long combos = 0;

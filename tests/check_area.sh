@@ -1,0 +1,25 @@
+#!/usr/bin/env bash
+# Synthesises the unit at narrow, default and wide widths (cdsim area, fresh
+# cache) and fails unless each synthesis passes its own checks (no divider,
+# latch or unmapped cell: the Yosys script asserts them) and the logic area
+# grows narrow < default < wide.
+# Usage: check_area.sh CDSIM WORKDIR "NARROW SETTINGS" "WIDE SETTINGS"
+set -euo pipefail
+cdsim=$1 work=$2 narrow=$3 wide=$4
+rm -rf "$work" && mkdir -p "$work"
+area() {  # name, settings...
+  local name=$1; shift
+  local args=()
+  for s in "$@"; do args+=(--set "$s"); done
+  "$cdsim" area --design cd-linear "${args[@]}" --cache "$work/cache" --json "$work/$name.json"
+  grep -o '"logic_area_um2": [0-9.e+]*' "$work/$name.json" | awk '{print $2}'
+}
+# shellcheck disable=SC2086
+a_narrow=$(area narrow $narrow | tail -1)
+a_default=$(area default | tail -1)
+# shellcheck disable=SC2086
+a_wide=$(area wide $wide | tail -1)
+echo "logic area: narrow $a_narrow, default $a_default, wide $a_wide um^2"
+awk -v n="$a_narrow" -v d="$a_default" -v w="$a_wide" 'BEGIN { exit !(n > 0 && n < d && d < w) }' ||
+  { echo "FAIL: the area does not grow narrow < default < wide"; exit 1; }
+echo "PASS"
