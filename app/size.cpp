@@ -2,9 +2,11 @@
 
 #include <fmt/format.h>
 
+#include <cstdio>
 #include <iostream>
 #include <stdexcept>
 
+#include "regress.hpp"
 #include "report.hpp"
 
 namespace cdsim {
@@ -60,6 +62,17 @@ CLI::App* add_size_command(CLI::App& app, SizeOptions& options) {
   size->add_option("--statistic", options.statistic, "which per-pixel statistic must meet it")
       ->check(CLI::IsMember({"max", "p99", "mean"}))
       ->capture_default_str();
+  size->add_flag("--verify", options.verify,
+                 "then run the RTL at the widths found against the model, bit and cycle exact: the "
+                 "scene, then random triangles with back-pressure (constant-depth designs)");
+  size->add_option("--verify-random", options.verify_random, "random triangles after the scene")
+      ->capture_default_str();
+  size->add_option("--verify-backpressure", options.verify_backpressure,
+                   "probability that the fragment sink stalls a cycle")
+      ->check(CLI::Range(0.0, 0.95))
+      ->capture_default_str();
+  size->add_option("--rtl-cache", options.rtl_cache,
+                   "folder of the RTL verilated for the widths found (as cdsim regress --rtl-cache)");
   return size;
 }
 
@@ -71,6 +84,10 @@ int run_size_command(const SizeOptions& options) {
   const Design design = designs.front();
   if (options.metric == "footprint" && options.statistic != "max")
     throw std::invalid_argument("the footprint metric is kept as a maximum only: use --statistic max");
+  if (options.verify && design.kind != Design::Kind::ConstantDepth)
+    throw std::invalid_argument(fmt::format(
+        "--verify: design '{}' has no RTL; the RTL implements cd-none, cd-linear, cd-dense2, "
+        "cd-dense4, cd-dense2-linear", design.name));
   const PreparedScene scene = prepared_scene(options.common, user);
   std::cout << provenance(scene.scene, user);
   fmt::print("sizing {} for {} {} error <= {}\n\n", design.name, options.statistic, options.metric,
@@ -134,7 +151,20 @@ int run_size_command(const SizeOptions& options) {
   fmt::print("\n{}: {} {} error {:.4g} {} target {}\n", confirmed <= options.max_error ? "confirmed" : "NOT MET",
              options.statistic, options.metric, confirmed, confirmed <= options.max_error ? "<=" : ">",
              options.max_error);
-  return confirmed <= options.max_error ? 0 : 1;
+  const int status = confirmed <= options.max_error ? 0 : 1;
+  if (!options.verify) return status;
+  fmt::print("\nverify: the RTL at these widths against the model\n");
+  std::fflush(stdout);
+  rtl::VerifyRequest request;
+  request.widths = w;
+  request.scene = options.common.scene;
+  request.scene_options = options.common.scene_options;
+  request.design = design.name;
+  request.random = options.verify_random;
+  request.backpressure = options.verify_backpressure;
+  request.rtl_cache = options.rtl_cache;
+  const int verified = rtl::verify_widths(request);
+  return status != 0 ? status : verified;
 }
 
 }  // namespace cdsim

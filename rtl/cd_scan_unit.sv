@@ -198,6 +198,7 @@ module cd_scan_unit #(
   column_walker u_column_walker (
     .clk_i,
     .rst_ni,
+    .active_i          (state_q == StColumn),
     .init_i            (column_init),
     .advance_i         (column_advance),
     .offset_i          (offset_q),

@@ -15,13 +15,14 @@
 //
 // Timing: init_i (the cycle before a band's first column) loads column 0;
 // advance_i moves to the next column at the end of the cycle. The outputs
-// describe the current column and are valid in every cycle after init.
+// describe the current column while active_i (operand isolation: 0 otherwise).
 `include "cd_widths.svh"
 `default_nettype none
 
 module column_walker (
   input  logic                              clk_i,
   input  logic                              rst_ni,
+  input  logic                              active_i,  // a column cycle: outputs wanted
   input  logic                              init_i,
   input  logic                              advance_i,
   input  logic [`CD_PIXEL_BITS-1:0]         offset_i,
@@ -127,38 +128,57 @@ module column_walker (
   /* verilator lint_on UNUSEDSIGNAL */
 
   always_comb begin
-    major_o = major_lo_i + offset_i;
-    // r(o) rounds m g o, ties toward +inf; the pixel lies t below its line.
-    rounded = (exact_q + ExactBits'(1 <<< (GFrac - 1))) >>> GFrac;
-    line_shift_o = LineBits'(rounded);
-    t = TDistBits'((rounded <<< GFrac) - exact_q);
-    direction_o = t > 0 ? 2'sd1 : (t < 0 ? -2'sd1 : 2'sd0);
-    t_abs = t < 0 ? TDistBits'(-t) : TDistBits'(t);
-    weight_wide = ((WeightWideBits'(t_abs) + WeightWideBits'(WeightHalf)) >> WeightRight) << WeightLeft;
-    weight_o = WeightBits'(weight_wide);
-
-    // The span: every edge's bound, the box, and the band's lines
-    // (line = m (minor - minor_lo) - r lies in [band_lo, band_hi]).
-    span_lo = SpanBits'($signed({1'b0, minor_lo_i}));
-    span_hi = SpanBits'($signed({1'b0, minor_hi_i}));
+    major_o = '0;
+    rounded = '0;
+    line_shift_o = '0;
+    t = '0;
+    direction_o = '0;
+    t_abs = '0;
+    weight_wide = '0;
+    weight_o = '0;
+    span_lo = '0;
+    span_hi = '0;
     span_empty = 1'b0;
-    for (int i = 0; i < 3; i++) begin
-      bound = SpanBits'(bound_q[i]);
-      unique case (edge_kind_i[2*i +: 2])
-        2'd1: if (-bound > span_lo) span_lo = -bound;
-        2'd2: if (bound < span_hi) span_hi = bound;
-        default: if (bound < 0) span_empty = 1'b1;
-      endcase
+    bound = '0;
+    band_first = '0;
+    band_last = '0;
+    has_pixels_o = 1'b0;
+    first_o = '0;
+    last_o = '0;
+    if (active_i) begin
+      major_o = major_lo_i + offset_i;
+      // r(o) rounds m g o, ties toward +inf; the pixel lies t below its line.
+      rounded = (exact_q + ExactBits'(1 <<< (GFrac - 1))) >>> GFrac;
+      line_shift_o = LineBits'(rounded);
+      t = TDistBits'((rounded <<< GFrac) - exact_q);
+      direction_o = t > 0 ? 2'sd1 : (t < 0 ? -2'sd1 : 2'sd0);
+      t_abs = t < 0 ? TDistBits'(-t) : TDistBits'(t);
+      weight_wide = ((WeightWideBits'(t_abs) + WeightWideBits'(WeightHalf)) >> WeightRight) << WeightLeft;
+      weight_o = WeightBits'(weight_wide);
+
+      // The span: every edge's bound, the box, and the band's lines
+      // (line = m (minor - minor_lo) - r lies in [band_lo, band_hi]).
+      span_lo = SpanBits'($signed({1'b0, minor_lo_i}));
+      span_hi = SpanBits'($signed({1'b0, minor_hi_i}));
+      span_empty = 1'b0;
+      for (int i = 0; i < 3; i++) begin
+        bound = SpanBits'(bound_q[i]);
+        unique case (edge_kind_i[2*i +: 2])
+          2'd1: if (-bound > span_lo) span_lo = -bound;
+          2'd2: if (bound < span_hi) span_hi = bound;
+          default: if (bound < 0) span_empty = 1'b1;
+        endcase
+      end
+      band_first = (LineBits+1)'($signed({1'b0, minor_lo_i})) -
+                   ((-((LineBits+1)'(band_lo_i)) - (LineBits+1)'(line_shift_o)) >>> density_log2_i);
+      band_last = (LineBits+1)'($signed({1'b0, minor_lo_i})) +
+                  (((LineBits+1)'(band_hi_i) + (LineBits+1)'(line_shift_o)) >>> density_log2_i);
+      if (SpanBits'(band_first) > span_lo) span_lo = SpanBits'(band_first);
+      if (SpanBits'(band_last) < span_hi) span_hi = SpanBits'(band_last);
+      has_pixels_o = !span_empty && span_lo <= span_hi;
+      first_o = PixelBits'(span_lo);
+      last_o = PixelBits'(span_hi);
     end
-    band_first = (LineBits+1)'($signed({1'b0, minor_lo_i})) -
-                 ((-((LineBits+1)'(band_lo_i)) - (LineBits+1)'(line_shift_o)) >>> density_log2_i);
-    band_last = (LineBits+1)'($signed({1'b0, minor_lo_i})) +
-                (((LineBits+1)'(band_hi_i) + (LineBits+1)'(line_shift_o)) >>> density_log2_i);
-    if (SpanBits'(band_first) > span_lo) span_lo = SpanBits'(band_first);
-    if (SpanBits'(band_last) < span_hi) span_hi = SpanBits'(band_last);
-    has_pixels_o = !span_empty && span_lo <= span_hi;
-    first_o = PixelBits'(span_lo);
-    last_o = PixelBits'(span_hi);
   end
 
 endmodule

@@ -1,0 +1,30 @@
+// The RTL verilated for any widths (`cdsim regress --set`, `cdsim size
+// --verify`): built on first use into a cache folder, as a shared object that
+// holds the Verilated model and the bench of bench.hpp instantiated for it, and
+// loaded into cdsim. rtl_cache.cpp describes the cache.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "scoreboard.hpp"
+#include "widths.hpp"
+
+namespace cdsim::rtl {
+
+struct BenchOptions;
+
+// run_bench<Dut> (bench.hpp) for the cached model.
+using RunBench = int (*)(const std::vector<Job>* jobs, const Widths* widths,
+                         const BenchOptions* options);
+
+// Verilates and compiles the RTL for exactly these widths into cache_dir
+// (empty: default_rtl_cache_dir()) on first use, saying what it does; later
+// calls reuse it. Throws std::runtime_error naming the log when Verilator or
+// the compiler fails.
+RunBench load_custom_rtl(const Widths& widths, const std::string& cache_dir);
+
+// $XDG_CACHE_HOME/cdsim/rtl, else ~/.cache/cdsim/rtl.
+std::string default_rtl_cache_dir();
+
+}  // namespace cdsim::rtl
