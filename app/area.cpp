@@ -15,6 +15,7 @@
 #include <thread>
 
 #include "build_info.hpp"
+#include "cache_files.hpp"
 #include "derived_widths.hpp"
 
 namespace cdsim {
@@ -25,36 +26,6 @@ namespace {
 
 // Bumped whenever the flow below changes, so that cached results are redone.
 constexpr const char* kFlowVersion = "area-flow-2";
-
-uint64_t fnv1a(const std::string& text, uint64_t hash = 1469598103934665603ull) {
-  for (unsigned char c : text) hash = (hash ^ c) * 1099511628211ull;
-  return hash;
-}
-
-std::string read_file(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(fmt::format("{}: cannot read", path.string()));
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-void write_file(const fs::path& path, const std::string& text) {
-  const fs::path partial = path.string() + ".partial";
-  {
-    std::ofstream out(partial, std::ios::binary);
-    out << text;
-    out.close();
-    if (!out) throw std::runtime_error(fmt::format("{}: cannot write", partial.string()));
-  }
-  fs::rename(partial, path);  // atomic: a reader never sees half a file
-}
-
-fs::path default_cache_dir() {
-  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return fs::path(xdg) / "cdsim/area";
-  if (const char* home = std::getenv("HOME"); home && *home) return fs::path(home) / ".cache/cdsim/area";
-  return fs::temp_directory_path() / "cdsim-area";
-}
 
 int log2_of(int value) {
   int bits = 0;
@@ -147,7 +118,7 @@ std::string find_module(const std::map<std::string, ModuleStat>& modules, const 
 }
 
 double liberty_cell_area(const std::string& liberty, const std::string& cell) {
-  const std::string text = read_file(liberty);
+  const std::string text = read_text_file(liberty);
   const std::regex pattern("cell \\(" + cell + "\\) \\{\\s*area : ([0-9.]+)");
   std::smatch m;
   if (!std::regex_search(text, m, pattern))
@@ -196,9 +167,9 @@ AreaReport synthesise_area(const Design& design, const Widths& widths, const Are
   uint64_t hash = fnv1a(kFlowVersion);
   hash = fnv1a(header, hash);
   hash = fnv1a(fmt::format("{} {} {}", density_log2, has_correction, options.liberty), hash);
-  for (const fs::path& source : sources) hash = fnv1a(read_file(source), hash);
+  for (const fs::path& source : sources) hash = fnv1a(read_text_file(source), hash);
 
-  const fs::path cache = options.cache_dir.empty() ? default_cache_dir() : fs::path(options.cache_dir);
+  const fs::path cache = options.cache_dir.empty() ? cache_root("area") : fs::path(options.cache_dir);
   const fs::path dir = cache / fmt::format("{:016x}", hash);
   fs::create_directories(dir);
   const fs::path result_path = dir / "result.json";
@@ -215,17 +186,17 @@ AreaReport synthesise_area(const Design& design, const Widths& widths, const Are
 
   nlohmann::json synthesised;
   if (fs::exists(result_path)) {
-    synthesised = nlohmann::json::parse(read_file(result_path));
+    synthesised = nlohmann::json::parse(read_text_file(result_path));
     report.cached = true;
   } else {
-    write_file(dir / "cd_widths.svh", header);
+    write_file_atomic(dir / "cd_widths.svh", header);
     std::string unit_sources;
     for (const fs::path& source : sources)
       if (source.filename() != "scanline_table.sv") unit_sources += " " + source.string();
     const std::string L = options.liberty;
     const std::string include = fmt::format("-I{} -I{}", dir.string(), rtl_dir.string());
     // The unit, with the scanline table as a black box (it is SRAM).
-    write_file(dir / "unit.ys", fmt::format(
+    write_file_atomic(dir / "unit.ys", fmt::format(
         "read_verilog -sv -DSYNTHESIS {inc}{src}\n"
         "read_verilog -sv -lib {inc} {rtl}/scanline_table.sv\n"
         "chparam -set MaxDensityLog2 {m} -set HasCorrection {c} cd_scan_unit\n"
@@ -242,7 +213,7 @@ AreaReport synthesise_area(const Design& design, const Widths& widths, const Are
         fmt::arg("m", density_log2), fmt::arg("c", has_correction), fmt::arg("L", L)));
     // The same table from flip-flops, synthesised at up to 64 lines.
     const int64_t flop_lines = std::min<int64_t>(sram_depth, 64);
-    write_file(dir / "table.ys", fmt::format(
+    write_file_atomic(dir / "table.ys", fmt::format(
         "read_verilog -sv {inc} {rtl}/scanline_table.sv\n"
         "chparam -set Depth {d} -set WordBits {w} scanline_table\n"
         "hierarchy -check -top scanline_table\n"
@@ -269,8 +240,8 @@ AreaReport synthesise_area(const Design& design, const Widths& widths, const Are
       throw std::runtime_error(fmt::format("yosys failed on the flip-flop table: {} ({})",
                                            yosys_error(dir / "table.log"), (dir / "table.log").string()));
 
-    const auto unit = parse_stat(read_file(dir / "unit.log"));
-    const auto flop_table = parse_stat(read_file(dir / "table.log"));
+    const auto unit = parse_stat(read_text_file(dir / "unit.log"));
+    const auto flop_table = parse_stat(read_text_file(dir / "table.log"));
     const std::string top = find_module(unit, "cd_scan_unit");
     const std::string setup = find_module(unit, "setup_engine");
     const std::string recip = find_module(unit, "reciprocal");
@@ -291,7 +262,7 @@ AreaReport synthesise_area(const Design& design, const Widths& widths, const Are
         {"flop_table_lines", flop_lines},
         {"flop_table_area_um2", table_tree.area},
     };
-    write_file(result_path, synthesised.dump(2) + "\n");
+    write_file_atomic(result_path, synthesised.dump(2) + "\n");
   }
   report.synthesis_seconds = synthesised.at("seconds").get<double>();
   for (const auto& b : synthesised.at("blocks")) {
@@ -377,7 +348,7 @@ int run_area_command(const AreaOptions& options) {
                  : ", scaled linearly to the full depth");
   fmt::print("total (logic + SRAM table): {:.0f} um^2\n", r.total_area_um2);
   if (!options.json_path.empty()) {
-    write_file(options.json_path, area_json(r, options).dump(2) + "\n");
+    write_file_atomic(options.json_path, area_json(r, options).dump(2) + "\n");
     fmt::print("wrote {}\n", options.json_path);
   }
   return 0;

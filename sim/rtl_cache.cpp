@@ -19,6 +19,8 @@
 // cdsim thus recompiles the bench alone (one file), not the model.
 #include "rtl_cache.hpp"
 
+#include "cache_files.hpp"
+
 #include <dlfcn.h>
 #include <elf.h>
 #include <fcntl.h>
@@ -60,31 +62,7 @@ namespace {
 constexpr const char* kCacheVersion = "rtl-cache-1";
 constexpr const char* kPrefix = "Vcd_scan_unit_custom";
 
-uint64_t fnv1a(std::string_view text, uint64_t hash = 1469598103934665603ull) {
-  for (unsigned char c : text) hash = (hash ^ c) * 1099511628211ull;
-  return hash;
-}
-
 std::string hex(uint64_t value) { return fmt::format("{:016x}", value); }
-
-std::string read_file(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(fmt::format("{}: cannot read", path.string()));
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-void write_file(const fs::path& path, const std::string& text) {
-  const fs::path partial = path.string() + ".partial";
-  {
-    std::ofstream out(partial, std::ios::binary);
-    out << text;
-    out.close();
-    if (!out) throw std::runtime_error(fmt::format("{}: cannot write", partial.string()));
-  }
-  fs::rename(partial, path);
-}
 
 template <size_t N>
 std::vector<std::string> strings(const char* const (&items)[N]) {
@@ -136,7 +114,7 @@ std::string own_build_id() {
         return 1;  // the first object is the executable: stop there
       },
       &id);
-  if (id.empty()) id = "exe-" + hex(fnv1a(read_file("/proc/self/exe")));
+  if (id.empty()) id = "exe-" + hex(fnv1a(read_text_file("/proc/self/exe")));
   return id;
 }
 
@@ -154,7 +132,7 @@ struct Step {
 };
 
 pid_t spawn(const Step& step) {
-  write_file(step.log, "$ " + joined(step.argv) + "\n");
+  write_file_atomic(step.log, "$ " + joined(step.argv) + "\n");
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
@@ -227,7 +205,7 @@ Timings read_timings(const fs::path& root) {
 
 void write_timings(const fs::path& root, const Timings& t) {
   try {
-    write_file(root / "build_seconds", fmt::format("model {:.1f}\nbench {:.1f}\n", t.model, t.bench));
+    write_file_atomic(root / "build_seconds", fmt::format("model {:.1f}\nbench {:.1f}\n", t.model, t.bench));
   } catch (const std::exception&) {
     // only an estimate
   }
@@ -274,8 +252,8 @@ void build_model(const fs::path& root, const fs::path& model_dir, const std::str
   fs::remove_all(tmp);
   fs::create_directories(tmp / "log");
   fs::create_directories(tmp / "obj");
-  write_file(tmp / "cd_widths.svh", header);
-  write_file(tmp / "inputs.txt", inputs);
+  write_file_atomic(tmp / "cd_widths.svh", header);
+  write_file_atomic(tmp / "inputs.txt", inputs);
   const auto start = std::chrono::steady_clock::now();
   run_steps({{verilator_command(tmp / "verilated", tmp), tmp / "log/verilator.log", "Verilator"}}, 1);
   std::vector<Step> compiles;
@@ -362,13 +340,7 @@ RunBench open_bench(const fs::path& library) {
 
 }  // namespace
 
-std::string default_rtl_cache_dir() {
-  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg)
-    return (fs::path(xdg) / "cdsim/rtl").string();
-  if (const char* home = std::getenv("HOME"); home && *home)
-    return (fs::path(home) / ".cache/cdsim/rtl").string();
-  return (fs::temp_directory_path() / "cdsim-rtl").string();
-}
+std::string default_rtl_cache_dir() { return cache_root("rtl").string(); }
 
 RunBench load_custom_rtl(const Widths& widths, const std::string& cache_dir) {
   const std::string header = rtl_header(widths, "custom");
@@ -379,7 +351,7 @@ RunBench load_custom_rtl(const Widths& widths, const std::string& cache_dir) {
   uint64_t model_key = fnv1a(kCacheVersion);
   model_key = fnv1a(header, model_key);
   for (const fs::path& sv : files_in(kRtlDir, ".sv")) {
-    const std::string text = read_file(sv);
+    const std::string text = read_text_file(sv);
     model_key = fnv1a(text, fnv1a(sv.filename().string(), model_key));
     inputs += fmt::format("rtl: {} {}\n", sv.filename().string(), hex(fnv1a(text)));
   }
@@ -390,7 +362,7 @@ RunBench load_custom_rtl(const Widths& widths, const std::string& cache_dir) {
   bench_key = fnv1a(joined(bench_flags()) + "\n" + joined(strings(build::kLinkFlags)), bench_key);
   for (const auto& entry : fs::directory_iterator(build::kBenchSources))
     if (entry.is_regular_file() && entry.path().filename() != "stamp")
-      bench_key = fnv1a(read_file(entry.path()), fnv1a(entry.path().filename().string(), bench_key));
+      bench_key = fnv1a(read_text_file(entry.path()), fnv1a(entry.path().filename().string(), bench_key));
   const fs::path library = model_dir / fmt::format("bench-{}.so", hex(bench_key));
 
   Timings timings = read_timings(root);
