@@ -43,7 +43,7 @@ struct AreaOptions {
   std::string json_path;
   std::string cache_dir;  // default: $XDG_CACHE_HOME/cdsim/area or ~/.cache/cdsim/area
   std::string liberty = "/usr/share/qflow/tech/osu018/osu018_stdcells.lib";
-  double sram_cell_um2 = 4.65;   // docs/area.md: 6T bit cell, 0.18 um logic process
+  double sram_cell_um2 = 6.0;    // docs/area.md: 600 lambda^2, lambda = 0.10 um (osu018's SCMOS rules)
   double sram_efficiency = 0.65; // cell array / macro area
 };
 
