@@ -2,14 +2,19 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
-#include <chrono>
-#include <cstdio>
-#include <fstream>
-#include <iostream>
 #include <unistd.h>
 
+#include <cerrno>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <iostream>
+
 #include "area.hpp"
+#include "cache_files.hpp"
+#include "cli.hpp"
 #include "common.hpp"
+#include "interrupt.hpp"
 #include "render.hpp"
 #include "size.hpp"
 #include "sweep.hpp"
@@ -28,9 +33,10 @@ using namespace cdsim;
 
 int run_command(const CommonOptions& options, const std::string& json_path, bool show_worst) {
   const Widths widths = widths_from(options);
-  const std::vector<Design> designs = parse_design_list(options.designs);
+  const std::vector<Design> designs = designs_from(options.designs);
+  if (!json_path.empty()) check_output_folder("--json", json_path);
   const PreparedScene scene = prepare(load_scene(options.scene, options.scene_options), widths);
-  std::cout << provenance(scene.scene, widths) << '\n';
+  std::cout << provenance(scene.scene, widths) << std::endl;  // before the long part
   std::vector<DesignResult> results;
   for (const Design& d : designs) {
     if (isatty(fileno(stderr))) fmt::print(stderr, "running {} ...\r", d.name);
@@ -39,9 +45,7 @@ int run_command(const CommonOptions& options, const std::string& json_path, bool
   std::cout << results_table(results, widths);
   if (show_worst) std::cout << worst_pixels(results, scene.scene, widths);
   if (!json_path.empty()) {
-    std::ofstream out(json_path);
-    if (!out) throw std::runtime_error(fmt::format("{}: cannot write", json_path));
-    out << results_json(scene.scene, widths, results).dump(2) << '\n';
+    write_file_atomic(json_path, results_json(scene.scene, widths, results).dump(2) + '\n');
     std::cout << "wrote " << json_path << '\n';
   }
   return 0;
@@ -49,11 +53,12 @@ int run_command(const CommonOptions& options, const std::string& json_path, bool
 
 int bench_command(const CommonOptions& options, double seconds) {
   const Widths widths = widths_from(options);
-  const std::vector<Design> designs = parse_design_list(options.designs);
+  const std::vector<Design> designs = designs_from(options.designs);
   const PreparedScene scene = prepare(load_scene(options.scene, options.scene_options), widths);
   std::cout << provenance(scene.scene, widths);
   fmt::print("single-threaded model throughput, error measurement off, at least {} s per design\n\n",
              seconds);
+  std::fflush(stdout);
   for (const Design& d : designs) {
     using clock = std::chrono::steady_clock;
     const auto start = clock::now();
@@ -78,10 +83,7 @@ int widths_command(const CommonOptions& options, const std::string& sv_path) {
       std::cout << text;
       return 0;
     }
-    std::ofstream out(sv_path);
-    out << text;
-    out.close();
-    if (!out) throw std::runtime_error(fmt::format("{}: cannot write", sv_path));
+    write_file_atomic(sv_path, text);
     std::cout << "wrote " << sv_path << '\n';
     return 0;
   }
@@ -96,68 +98,60 @@ int widths_command(const CommonOptions& options, const std::string& sv_path) {
   return 0;
 }
 
+// Runs the parsed command; returns its exit status.
+int dispatch(Cli& cli) {
+  if (*cli.bench_command) return bench_command(cli.bench, cli.bench_seconds);
+  if (*cli.widths_command) return widths_command(cli.widths, cli.sv_path);
+  if (*cli.regress_command) return cdsim::rtl::run_regress_command(cli.regress);
+  if (*cli.sweep_command) return run_sweep_command(cli.sweep);
+  if (*cli.render_command) return run_render_command(cli.render);
+  if (*cli.size_command) return run_size_command(cli.size);
+  if (*cli.area_command) return run_area_command(cli.area);
+  if (*cli.hard_cases_command) {
+    for (const HardCase& c : hard_cases()) fmt::print("hard:{:<15} {}\n", c.name, c.expected);
+    return 0;
+  }
+  if (*cli.designs_command) {
+    for (const Design& d : all_designs()) fmt::print("{:<17} {}\n", d.name, d.summary);
+    return 0;
+  }
+  return run_command(cli.run, cli.json_path, cli.show_worst);
+}
+
+// What was printed must have reached stdout: a full disk or a closed file is
+// an error too, as coreutils' close_stdout makes it.
+int check_stdout(int status) {
+  errno = 0;
+  std::cout.flush();
+  if (std::fflush(stdout) != 0 || std::ferror(stdout) || !std::cout) {
+    fmt::print(stderr, "cdsim: error: stdout: cannot write{}\n",
+               errno ? fmt::format(": {}", std::strerror(errno)) : "");
+    return status != 0 ? status : 2;
+  }
+  return status;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"cdsim: cycle-level simulator of the constant-depth scan texture unit"};
-  app.require_subcommand(0, 1);
-  CommonOptions run_options, bench_options, widths_options;
-  std::string json_path;
-  double bench_seconds = 1.0;
-
-  CLI::App* run = app.add_subcommand("run", "run a scene through the designs (the default command)");
-  add_common(run, run_options);
-  run->add_option("--json", json_path, "also write the results as JSON to this file");
-  bool show_worst = false;
-  run->add_flag("--worst", show_worst, "print each design's worst pixel");
-
-  CLI::App* bench = app.add_subcommand("bench", "model throughput per design, in M pixels/s");
-  add_common(bench, bench_options);
-  bench->add_option("--seconds", bench_seconds, "minimum time per design")->check(CLI::PositiveNumber);
-
-  CLI::App* widths = app.add_subcommand("widths", "list the width and microarchitecture parameters");
-  widths->add_option("--set", widths_options.settings, "NAME=VALUE, as for run");
-  std::string sv_path;
-  widths->add_option("--sv", sv_path,
-                     "write the RTL's cd_widths.svh (parameters, derived widths, flags, word "
-                     "layout) to this file, or - for stdout");
-
-  CLI::App* regress = cdsim::rtl::add_regress_command(app);
-  SweepOptions sweep_options;
-  CLI::App* sweep = add_sweep_command(app, sweep_options);
-  CLI::App* designs = app.add_subcommand("designs", "list the designs");
-  CLI::App* hard = app.add_subcommand("hard-cases", "list the named hard cases (--scene hard:NAME, hard:all)");
-  RenderOptions render_options;
-  CLI::App* render = add_render_command(app, render_options);
-  SizeOptions size_options;
-  CLI::App* size = add_size_command(app, size_options);
-  AreaOptions area_options;
-  CLI::App* area = add_area_command(app, area_options);
-
+  install_interrupt_handlers();
+  const std::unique_ptr<Cli> cli = make_cli();
   try {
-    app.parse(argc, argv);
+    cli->app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    return cli->app.exit(e);
   }
+  int status = 0;
   try {
-    if (*bench) return bench_command(bench_options, bench_seconds);
-    if (*widths) return widths_command(widths_options, sv_path);
-    if (*regress) return cdsim::rtl::run_regress_command();
-    if (*sweep) return run_sweep_command(sweep_options);
-    if (*render) return run_render_command(render_options);
-    if (*size) return run_size_command(size_options);
-    if (*area) return run_area_command(area_options);
-    if (*hard) {
-      for (const HardCase& c : hard_cases()) fmt::print("hard:{:<15} {}\n", c.name, c.expected);
-      return 0;
-    }
-    if (*designs) {
-      for (const Design& d : all_designs()) fmt::print("{:<17} {}\n", d.name, d.summary);
-      return 0;
-    }
-    return run_command(run_options, json_path, show_worst);
+    status = dispatch(*cli);
+  } catch (const Interrupted& e) {
+    std::cout.flush();
+    fmt::print(stderr, "cdsim: {}\n", e.what());
+    return e.exit_status();
   } catch (const std::exception& e) {
+    std::cout.flush();
     fmt::print(stderr, "cdsim: error: {}\n", e.what());
-    return 2;
+    return check_stdout(2);
   }
+  return check_stdout(status);
 }

@@ -20,7 +20,13 @@ struct CommonOptions {
 };
 
 void add_common(CLI::App* app, CommonOptions& options);
+// The widths of the --set options (each parameter at most once), validated.
 Widths widths_from(const CommonOptions& options);
+// Refuses, before a long run, an output file whose folder is missing or not
+// writable (the write itself is checked again).
+void check_output_folder(const std::string& option, const std::string& path);
+// parse_design_list, refusing a design named twice.
+std::vector<Design> designs_from(const std::string& list);
 PreparedScene prepared_scene(const CommonOptions& options, const Widths& widths);
 
 }  // namespace cdsim

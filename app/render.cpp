@@ -9,7 +9,10 @@
 #include <stdexcept>
 #include <vector>
 
+#include "cache_files.hpp"
+#include "cli_checks.hpp"
 #include "exact.hpp"
+#include "interrupt.hpp"
 #include "report.hpp"
 
 #define STB_IMAGE_WRITE_STATIC
@@ -47,9 +50,15 @@ struct Image {
       fill(x + int(p[0]) * scale, y + int(p[1]) * scale, x + int(p[8]) * scale, y + int(p[9]) * scale, colour);
     }
   }
-  void save(const std::string& path) const {
-    if (!stbi_write_png(path.c_str(), width, height, 3, pixels.data(), width * 3))
-      throw std::runtime_error(fmt::format("{}: cannot write PNG", path));
+  // The image as a PNG file's bytes (written with write_files_atomic).
+  std::string png(const std::string& path) const {
+    std::string bytes;
+    const auto append = [](void* context, void* data, int size) {
+      static_cast<std::string*>(context)->append(static_cast<const char*>(data), size_t(size));
+    };
+    if (!stbi_write_png_to_func(append, &bytes, width, height, 3, pixels.data(), width * 3))
+      throw std::runtime_error(fmt::format("{}: cannot encode the PNG", path));
+    return bytes;
   }
 };
 
@@ -86,9 +95,10 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& options) {
   CLI::App* render = app.add_subcommand(
       "render", "PNG per design: checkerboard beside the exact result, and an error heat map");
   add_common(render, options.common);
-  render->add_option("--out", options.out, "output folder")->capture_default_str();
+  render->add_option("--out", options.out, "output folder (created; locked while render runs)")
+      ->capture_default_str();
   render->add_option("--checker", options.checker_texels, "checker square size, texels")
-      ->check(CLI::Range(1, 4096))
+      ->check(cli::integer_in(1, 4096))
       ->capture_default_str();
   return render;
 }
@@ -96,9 +106,14 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& options) {
 int run_render_command(const RenderOptions& options) {
   const Widths widths = widths_from(options.common);
   const PreparedScene scene = prepared_scene(options.common, widths);
-  const std::vector<Design> designs = parse_design_list(options.common.designs);
-  std::filesystem::create_directories(options.out);
-  std::cout << provenance(scene.scene, widths);
+  const std::vector<Design> designs = designs_from(options.common.designs);
+  std::error_code folder_error;
+  std::filesystem::create_directories(options.out, folder_error);
+  if (folder_error)
+    throw std::runtime_error(
+        fmt::format("--out {}: cannot create the folder: {}", options.out, folder_error.message()));
+  const OutputFolderLock lock(options.out);
+  std::cout << provenance(scene.scene, widths) << std::flush;
   const int width = scene.scene.width, height = scene.scene.height;
   const size_t pixel_count = size_t(width) * size_t(height);
 
@@ -109,6 +124,7 @@ int run_render_command(const RenderOptions& options) {
   ScanUnit coverage(probe, widths, width, height);
   std::vector<Fragment> fragments;
   for (size_t t = 0; t < scene.unit.size(); ++t) {
+    throw_if_interrupted();
     fragments.clear();
     coverage.run(scene.unit[t], &fragments);
     if (fragments.empty()) continue;
@@ -128,7 +144,10 @@ int run_render_command(const RenderOptions& options) {
     if (owner[at] >= 0)
       exact_image.set(int(at % size_t(width)), int(at / size_t(width)), checker(exact_u[at], exact_v[at], options.checker_texels));
 
-  fmt::print("\n{:<17} {:>10}  {}\n", "design", "mean_err", "files");
+  // Every PNG is encoded first and all are written at the end, so that an
+  // interrupted render leaves the previous set whole.
+  std::vector<std::pair<std::filesystem::path, std::string>> files;
+  std::string lines;
   const double lsb = std::ldexp(1.0, -widths.out_frac);
   for (const Design& d : designs) {
     ScanUnit unit(d, widths, width, height);
@@ -136,6 +155,7 @@ int run_render_command(const RenderOptions& options) {
     double sum = 0;
     int64_t count = 0;
     for (size_t t = 0; t < scene.unit.size(); ++t) {
+      throw_if_interrupted();
       fragments.clear();
       unit.run(scene.unit[t], &fragments);
       for (const Fragment& f : fragments) {
@@ -158,10 +178,14 @@ int run_render_command(const RenderOptions& options) {
     heat_legend(heat_map);
     const std::string checker_path = (std::filesystem::path(options.out) / (d.name + "_checker.png")).string();
     const std::string heat_path = (std::filesystem::path(options.out) / (d.name + "_error.png")).string();
-    side.save(checker_path);
-    heat_map.save(heat_path);
-    fmt::print("{:<17} {:>10.3e}  {} {}\n", d.name, count ? sum / double(count) : 0.0, checker_path, heat_path);
+    files.emplace_back(checker_path, side.png(checker_path));
+    files.emplace_back(heat_path, heat_map.png(heat_path));
+    lines += fmt::format("{:<17} {:>10.3e}  {} {}\n", d.name, count ? sum / double(count) : 0.0,
+                         checker_path, heat_path);
   }
+  throw_if_interrupted();
+  write_files_atomic(files);
+  fmt::print("\n{:<17} {:>10}  {}\n{}", "design", "mean_err", "files", lines);
   fmt::print("visible pixels only (nearest triangle by exact 1/w); checker squares of {} texels\n",
              options.checker_texels);
   return 0;

@@ -4,8 +4,10 @@
 
 #include <cstdio>
 #include <iostream>
+#include <limits>
 #include <stdexcept>
 
+#include "cli_checks.hpp"
 #include "regress.hpp"
 #include "report.hpp"
 
@@ -55,31 +57,39 @@ CLI::App* add_size_command(CLI::App& app, SizeOptions& options) {
   CLI::App* size = app.add_subcommand(
       "size", "smallest widths and table depth that meet an error target on a scene");
   add_common(size, options.common);
-  size->add_option("--max-error", options.max_error, "error target")->required()->check(CLI::PositiveNumber);
+  // 0 is refused: a fixed-point output equals the long-double reference only by
+  // accident of the scene, so zero error is not a target widths can be sized for.
+  size->add_option("--max-error", options.max_error, "error target, > 0 (texels, or footprint-normalised)")
+      ->required()
+      ->check(cli::number_in(0, std::numeric_limits<double>::infinity(), true));
   size->add_option("--metric", options.metric, "texels, or footprint (error / max(1, rho))")
       ->check(CLI::IsMember({"texels", "footprint"}))
       ->capture_default_str();
   size->add_option("--statistic", options.statistic, "which per-pixel statistic must meet it")
       ->check(CLI::IsMember({"max", "p99", "mean"}))
       ->capture_default_str();
-  size->add_flag("--verify", options.verify,
+  CLI::Option* verify = size->add_flag("--verify", options.verify,
                  "then run the RTL at the widths found against the model, bit and cycle exact: the "
                  "scene, then random triangles with back-pressure (constant-depth designs)");
   size->add_option("--verify-random", options.verify_random, "random triangles after the scene")
+      ->check(cli::unsigned_in(0, 10'000'000))
+      ->needs(verify)
       ->capture_default_str();
   size->add_option("--verify-backpressure", options.verify_backpressure,
                    "probability that the fragment sink stalls a cycle")
-      ->check(CLI::Range(0.0, 0.95))
+      ->check(cli::number_in(0.0, 0.95))
+      ->needs(verify)
       ->capture_default_str();
   size->add_option("--rtl-cache", options.rtl_cache,
-                   "folder of the RTL verilated for the widths found (as cdsim regress --rtl-cache)");
+                   "folder of the RTL verilated for the widths found (as cdsim regress --rtl-cache)")
+      ->needs(verify);
   return size;
 }
 
 int run_size_command(const SizeOptions& options) {
   const Widths user = widths_from(options.common);
   const std::vector<Design> designs =
-      parse_design_list(options.common.designs.empty() ? "cd-linear" : options.common.designs);
+      designs_from(options.common.designs.empty() ? "cd-linear" : options.common.designs);
   if (designs.size() != 1) throw std::invalid_argument("size sizes one design at a time (--design NAME)");
   const Design design = designs.front();
   if (options.metric == "footprint" && options.statistic != "max")
@@ -92,6 +102,7 @@ int run_size_command(const SizeOptions& options) {
   std::cout << provenance(scene.scene, user);
   fmt::print("sizing {} for {} {} error <= {}\n\n", design.name, options.statistic, options.metric,
              options.max_error);
+  std::fflush(stdout);
 
   const auto measure = [&](const DesignResult& r) {
     if (options.metric == "footprint") return r.error.footprint_max;

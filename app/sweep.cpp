@@ -4,45 +4,25 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
 #include <mutex>
-#include <set>
 #include <stdexcept>
 #include <thread>
 
+#include "cache_files.hpp"
+#include "cli_checks.hpp"
+#include "interrupt.hpp"
 #include "report.hpp"
 
 namespace cdsim {
 
 namespace {
-
-int parse_int(const std::string& text, const std::string& context) {
-  size_t used = 0;
-  int value = 0;
-  try {
-    value = std::stoi(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != text.size())
-    throw std::invalid_argument(fmt::format("{}: '{}' is not an integer", context, text));
-  return value;
-}
-
-std::vector<std::string> split(const std::string& text, char separator) {
-  std::vector<std::string> parts;
-  size_t start = 0;
-  while (true) {
-    const size_t at = text.find(separator, start);
-    parts.push_back(text.substr(start, at == std::string::npos ? std::string::npos : at - start));
-    if (at == std::string::npos) return parts;
-    start = at + 1;
-  }
-}
 
 struct Config {
   Design design;
@@ -54,6 +34,7 @@ struct Config {
 std::vector<Config> product_configs(const std::vector<Design>& designs,
                                     const std::vector<SweepAxis>& axes) {
   std::vector<Config> configs;
+  configs.reserve(size_t(sweep_size(designs.size(), axes)));
   for (const Design& d : designs) {
     std::vector<size_t> index(axes.size(), 0);
     while (true) {
@@ -115,6 +96,14 @@ std::vector<Config> default_configs() {
   return configs;
 }
 
+// A CSV field, quoted when it holds a separator, a quote or a line break.
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return quoted + "\"";
+}
+
 std::string csv_header() {
   std::string h = "scene,design";
   for (const auto& p : param_table()) h += fmt::format(",{}", p.name);
@@ -137,7 +126,7 @@ int64_t flagged(const DesignResult& r) {
 }
 
 std::string csv_row(const std::string& scene, const Config& c, const DesignResult& r) {
-  std::string row = fmt::format("{},{}", scene, c.design.name);
+  std::string row = fmt::format("{},{}", csv_field(scene), c.design.name);
   for (const auto& p : param_table()) row += fmt::format(",{}", c.widths.*(p.field));
   row += fmt::format(",{},{},{},{:.6f},{},{},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{}",
                      swept_names(c), r.pixels, r.cycles, r.pixels_per_clock(), r.table_depth,
@@ -147,39 +136,85 @@ std::string csv_row(const std::string& scene, const Config& c, const DesignResul
   return row;
 }
 
-void progress(size_t done, size_t total, double seconds) {
-  if (!isatty(fileno(stderr))) return;
-  const int width = 40;
-  const int filled = total ? int(width * done / total) : width;
-  fmt::print(stderr, "\r[{:<{}}] {}/{} configurations, {:.0f} s", std::string(size_t(filled), '='),
-             width, done, total, seconds);
-  if (done == total) fmt::print(stderr, "\n");
+// Progress on stderr: a bar redrawn in place on a terminal, else a plain line
+// every kPlainProgressSeconds, so that a log shows the sweep is alive.
+constexpr double kPlainProgressSeconds = 5.0;
+
+class Progress {
+ public:
+  explicit Progress(size_t total) : total_(total), tty_(isatty(fileno(stderr))) {}
+  void update(size_t done, double seconds, bool final = false) {
+    const std::string left =
+        done > 0 && done < total_ ? fmt::format(", about {:.0f} s to go", seconds / double(done) * double(total_ - done))
+                                  : "";
+    if (tty_) {
+      const int width = 40;
+      const int filled = total_ ? int(width * done / total_) : width;
+      fmt::print(stderr, "\r[{:<{}}] {}/{} configurations, {:.0f} s{}\x1b[K",
+                 std::string(size_t(filled), '='), width, done, total_, seconds, left);
+      if (final) fmt::print(stderr, "\n");
+    } else if (final || seconds >= next_line_) {
+      fmt::print(stderr, "sweep: {}/{} configurations ({:.1f} %), {:.0f} s{}\n", done, total_,
+                 total_ ? 100.0 * double(done) / double(total_) : 100.0, seconds, left);
+      next_line_ = seconds + kPlainProgressSeconds;
+    }
+  }
+
+ private:
+  size_t total_;
+  bool tty_;
+  double next_line_ = kPlainProgressSeconds;
+};
+
+// The sweep's axes and designs from --set, --design and --file; a parameter
+// swept twice, or designs given twice, are refused naming both places.
+struct Plan {
+  bool default_sweep = false;
+  std::vector<SweepAxis> axes;
+  std::vector<Design> designs;
+};
+
+Plan make_plan(const SweepOptions& options) {
+  Plan plan;
+  std::map<std::string, std::string> origin;  // parameter -> where it is swept
+  for (const std::string& setting : options.common.settings) {
+    SweepAxis axis = parse_axis(setting);
+    if (const auto it = origin.find(axis.name); it != origin.end())
+      throw std::invalid_argument(
+          fmt::format("{} and --set {} both sweep parameter {}; give it once", it->second, setting, axis.name));
+    origin[axis.name] = "--set " + setting;
+    plan.axes.push_back(std::move(axis));
+  }
+  std::string design_list = options.common.designs;
+  if (!options.file.empty()) {
+    std::error_code ignored;
+    if (std::filesystem::is_directory(options.file, ignored))
+      throw std::invalid_argument(fmt::format("--file {}: is a folder", options.file));
+    std::ifstream in(options.file, std::ios::binary);
+    if (!in)
+      throw std::invalid_argument(fmt::format("--file {}: cannot open: {}", options.file, std::strerror(errno)));
+    SweepFile file = parse_sweep_file(in, options.file);
+    for (size_t i = 0; i < file.axes.size(); ++i) {
+      if (const auto it = origin.find(file.axes[i].name); it != origin.end())
+        throw std::invalid_argument(fmt::format("{}:{}: parameter {} is also swept by {}; give it once",
+                                                options.file, file.axis_lines[i], file.axes[i].name,
+                                                it->second));
+      plan.axes.push_back(std::move(file.axes[i]));
+    }
+    if (!file.designs.empty()) {
+      if (!design_list.empty())
+        throw std::invalid_argument(fmt::format(
+            "{}:{}: 'design {}' and --design {} both choose the designs; give one",
+            options.file, file.design_line, file.designs, design_list));
+      design_list = file.designs;
+    }
+  }
+  plan.default_sweep = plan.axes.empty() && design_list.empty();
+  if (!plan.default_sweep) plan.designs = designs_from(design_list);
+  return plan;
 }
 
 }  // namespace
-
-SweepAxis parse_axis(const std::string& text) {
-  const auto eq = text.find('=');
-  if (eq == std::string::npos || eq == 0)
-    throw std::invalid_argument(fmt::format("sweep setting '{}' is not NAME=LO:HI[:STEP], NAME=A,B or NAME=V", text));
-  SweepAxis axis{text.substr(0, eq), {}};
-  const std::string values = text.substr(eq + 1);
-  if (values.find(':') != std::string::npos) {
-    const auto parts = split(values, ':');
-    if (parts.size() < 2 || parts.size() > 3)
-      throw std::invalid_argument(fmt::format("sweep setting '{}': expected LO:HI or LO:HI:STEP", text));
-    const int lo = parse_int(parts[0], text), hi = parse_int(parts[1], text);
-    const int step = parts.size() == 3 ? parse_int(parts[2], text) : 1;
-    if (step <= 0) throw std::invalid_argument(fmt::format("sweep setting '{}': STEP must be positive", text));
-    if (hi < lo) throw std::invalid_argument(fmt::format("sweep setting '{}': HI is below LO", text));
-    for (int v = lo; v <= hi; v += step) axis.values.push_back(v);
-  } else {
-    for (const auto& part : split(values, ',')) axis.values.push_back(parse_int(part, text));
-  }
-  Widths probe;
-  for (int v : axis.values) set_param(probe, axis.name, v);  // throws naming the range
-  return axis;
-}
 
 CLI::App* add_sweep_command(CLI::App& app, SweepOptions& options) {
   CLI::App* sweep = app.add_subcommand(
@@ -188,61 +223,54 @@ CLI::App* add_sweep_command(CLI::App& app, SweepOptions& options) {
   sweep->add_option("--file", options.file,
                     "sweep file: one NAME=LO:HI[:STEP] (or NAME=A,B,C, NAME=V) per line, "
                     "'design LIST', '#' comments");
-  sweep->add_option("--out", options.out, "output folder")->capture_default_str();
-  sweep->add_option("--jobs", options.jobs, "worker threads (default: all cores)");
+  sweep->add_option("--out", options.out,
+                    "output folder (created; locked while the sweep runs)")
+      ->capture_default_str();
+  sweep->add_option("--jobs", options.jobs, "worker threads (default: all cores)")
+      ->check(cli::integer_in(1, 1024));
+  sweep->add_flag("--yes", options.yes,
+                  fmt::format("run a sweep of more than {} configurations", kSweepConfirmLimit));
   return sweep;
 }
 
 int run_sweep_command(const SweepOptions& options) {
-  std::vector<std::string> settings = options.common.settings;
-  std::string design_list = options.common.designs;
-  if (!options.file.empty()) {
-    std::ifstream in(options.file);
-    if (!in) throw std::invalid_argument(fmt::format("{}: cannot open", options.file));
-    std::string line;
-    int number = 0;
-    while (std::getline(in, line)) {
-      ++number;
-      if (const auto hash = line.find('#'); hash != std::string::npos) line.resize(hash);
-      const auto first = line.find_first_not_of(" \t");
-      if (first == std::string::npos) continue;
-      line = line.substr(first, line.find_last_not_of(" \t\r") - first + 1);
-      try {
-        if (line.rfind("design ", 0) == 0) {
-          design_list = line.substr(7);
-          parse_design_list(design_list);
-        } else {
-          parse_axis(line);
-          settings.push_back(line);
-        }
-      } catch (const std::exception& e) {
-        throw std::invalid_argument(fmt::format("{}:{}: {}", options.file, number, e.what()));
-      }
-    }
-  }
-  std::vector<Config> configs;
-  if (settings.empty() && design_list.empty()) {
-    configs = default_configs();
-  } else {
-    std::vector<SweepAxis> axes;
-    for (const auto& s : settings) axes.push_back(parse_axis(s));
-    configs = product_configs(parse_design_list(design_list), axes);
-  }
+  const Plan plan = make_plan(options);
+  const uint64_t size = plan.default_sweep ? uint64_t(default_configs().size())
+                                           : sweep_size(plan.designs.size(), plan.axes);
+  const std::string count = size == UINT64_MAX ? fmt::format("more than {}", size) : fmt::format("{}", size);
+  fmt::print("sweep: {} configurations x 1 scene ({}) = {} runs\n", count, options.common.scene, count);
+  std::fflush(stdout);
+  if (size > kSweepHardLimit)
+    throw std::invalid_argument(fmt::format(
+        "sweep of {} configurations: the limit is {} (each is held in memory); sweep fewer values",
+        count, kSweepHardLimit));
+  if (size > kSweepConfirmLimit && !options.yes)
+    throw std::invalid_argument(fmt::format(
+        "sweep of {} configurations is more than {}: narrow the ranges, or give --yes to run it",
+        count, kSweepConfirmLimit));
+
+  std::vector<Config> configs = plan.default_sweep ? default_configs() : product_configs(plan.designs, plan.axes);
   for (const Config& c : configs) validate(c.widths);
 
+  // The folder is locked before the long part, so that a second sweep into it stops at once.
+  std::error_code error;
+  std::filesystem::create_directories(options.out, error);
+  if (error)
+    throw std::runtime_error(fmt::format("--out {}: cannot create the folder: {}", options.out, error.message()));
+  const OutputFolderLock lock(options.out);
+
   const Scene scene = load_scene(options.common.scene, options.common.scene_options);
-  std::filesystem::create_directories(options.out);
   const unsigned jobs = options.jobs > 0 ? unsigned(options.jobs)
                                          : std::max(1u, std::thread::hardware_concurrency());
-  fmt::print("sweep: {} configurations on {} threads\nscene: {} ({} triangles; {})\nbuild: {}\n"
-             "seed: none (deterministic)\n",
-             configs.size(), jobs, scene.name, scene.triangles.size(), scene.description, build_id());
+  fmt::print("threads: {}\nscene: {} ({} triangles; {})\nbuild: {}\nseed: none (deterministic)\n",
+             jobs, scene.name, scene.triangles.size(), scene.description, build_id());
+  std::fflush(stdout);
 
   // Snapping depends on subpixel_bits and uv_in_frac: prepare once per pair.
   std::mutex prepared_mutex;
   std::map<std::pair<int, int>, std::shared_ptr<const PreparedScene>> prepared;
   const auto prepared_for = [&](const Widths& w) {
-    std::lock_guard<std::mutex> lock(prepared_mutex);
+    std::lock_guard<std::mutex> guard(prepared_mutex);
     auto& slot = prepared[{w.subpixel_bits, w.uv_in_frac}];
     if (!slot) slot = std::make_shared<const PreparedScene>(prepare(scene, w));
     return slot;
@@ -251,6 +279,7 @@ int run_sweep_command(const SweepOptions& options) {
 
   std::vector<DesignResult> results(configs.size());
   std::atomic<size_t> next{0}, done{0};
+  std::atomic<unsigned> running{jobs};
   std::exception_ptr failure;
   std::mutex failure_mutex;
   const auto start = std::chrono::steady_clock::now();
@@ -264,24 +293,28 @@ int run_sweep_command(const SweepOptions& options) {
         try {
           results[i] = evaluate(*prepared_for(configs[i].widths), configs[i].design, configs[i].widths);
         } catch (...) {
-          std::lock_guard<std::mutex> lock(failure_mutex);
+          std::lock_guard<std::mutex> guard(failure_mutex);
           if (!failure) failure = std::current_exception();
+          next = configs.size();  // the others stop after their current configuration
         }
         ++done;
       }
+      --running;
     });
-  while (done < configs.size()) {
-    progress(done, configs.size(), elapsed());
-    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  Progress progress(configs.size());
+  for (int tick = 0; running > 0; ++tick) {
+    if (interrupted()) next = configs.size();
+    if (tick % 2 == 0) progress.update(done, elapsed());
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }
   for (auto& w : workers) w.join();
-  progress(done, configs.size(), elapsed());
+  throw_if_interrupted();
   if (failure) std::rethrow_exception(failure);
+  progress.update(done, elapsed(), true);
 
   const std::string csv_path = (std::filesystem::path(options.out) / "sweep.csv").string();
   const std::string json_path = (std::filesystem::path(options.out) / "sweep.json").string();
-  std::ofstream csv(csv_path);
-  csv << csv_header() << '\n';
+  std::string csv = csv_header() + '\n';
   nlohmann::json json;
   json["scene"] = {{"name", scene.name}, {"description", scene.description},
                    {"triangles", scene.triangles.size()}, {"resolution", {scene.width, scene.height}}};
@@ -290,32 +323,33 @@ int run_sweep_command(const SweepOptions& options) {
   for (const auto& p : param_table()) json["defaults"][p.name] = p.default_value;
   json["rows"] = nlohmann::json::array();
   for (size_t i = 0; i < configs.size(); ++i) {
-    csv << csv_row(scene.name, configs[i], results[i]) << '\n';
+    csv += csv_row(scene.name, configs[i], results[i]) + '\n';
     nlohmann::json row = results_json(scene, configs[i].widths, {results[i]})["designs"][0];
     row["scene"] = scene.name;
     for (const auto& p : param_table()) row["widths"][p.name] = configs[i].widths.*(p.field);
     for (const auto& [name, value] : configs[i].swept) row["swept"][name] = value;
     json["rows"].push_back(row);
   }
-  std::ofstream(json_path) << json.dump(1) << '\n';
+  // Both files complete before either replaces the previous run's.
+  write_files_atomic({{json_path, json.dump(1) + '\n'}, {csv_path, csv}});
 
   // A readable summary: per design, the range of cycles and the most accurate configuration.
   fmt::print("\n{:<17} {:>7} {:>11} {:>11} {:>10}  {}\n", "design", "configs", "min_cycles",
              "max_cycles", "best_mean", "best configuration");
   for (const Design& d : all_designs()) {
-    int64_t lo = -1, hi = -1, count = 0;
+    int64_t lo = -1, hi = -1, n = 0;
     size_t best = configs.size();
     for (size_t i = 0; i < configs.size(); ++i) {
       if (configs[i].design.name != d.name) continue;
-      ++count;
+      ++n;
       lo = lo < 0 ? results[i].cycles : std::min(lo, results[i].cycles);
       hi = std::max(hi, results[i].cycles);
       if (best == configs.size() || results[i].error.mean < results[best].error.mean) best = i;
     }
-    if (count == 0) continue;
+    if (n == 0) continue;
     std::string setting;
     for (const auto& [name, value] : configs[best].swept) setting += fmt::format("{}={} ", name, value);
-    fmt::print("{:<17} {:>7} {:>11} {:>11} {:>10.3e}  {}\n", d.name, count, lo, hi,
+    fmt::print("{:<17} {:>7} {:>11} {:>11} {:>10.3e}  {}\n", d.name, n, lo, hi,
                results[best].error.mean, setting.empty() ? "defaults" : setting);
   }
   fmt::print("\n{} configurations in {:.1f} s; wrote {} and {}\n", configs.size(), elapsed(),

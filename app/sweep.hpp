@@ -3,29 +3,29 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <cstdint>
 #include <string>
 #include <vector>
 
 #include "common.hpp"
+#include "sweep_file.hpp"
 
 namespace cdsim {
 
+// Larger sweeps are refused unless --yes is given; above the hard limit they
+// are refused regardless (every configuration and its result are held in memory).
+constexpr uint64_t kSweepConfirmLimit = 100'000;
+constexpr uint64_t kSweepHardLimit = 10'000'000;
+
 struct SweepOptions {
   CommonOptions common;  // its --set entries may be ranges: NAME=LO:HI[:STEP] or NAME=A,B,C
-  std::string file;      // sweep file: the same NAME=... lines, '#' comments, "design LIST"
+  std::string file;      // sweep file (sweep_file.hpp)
   std::string out = "sweep-out";
-  int jobs = 0;          // 0: all cores
+  int jobs = 0;          // worker threads; 0 (not given): all cores
+  bool yes = false;      // run more than kSweepConfirmLimit configurations
 };
 
 CLI::App* add_sweep_command(CLI::App& app, SweepOptions& options);
 int run_sweep_command(const SweepOptions& options);
-
-// One sweep axis: a parameter and the values it takes.
-struct SweepAxis {
-  std::string name;
-  std::vector<int> values;
-};
-// Parses "NAME=LO:HI[:STEP]", "NAME=A,B,C" or "NAME=V"; checks every value's range.
-SweepAxis parse_axis(const std::string& text);
 
 }  // namespace cdsim

@@ -1,12 +1,15 @@
-// Files of cdsim's caches (cdsim area, cdsim regress --set): a stable content
-// hash for cache keys, whole-file reads, and writes that never leave half a
-// file under the final name.
+// Files of cdsim's caches and outputs (cdsim area, cdsim regress --set, and
+// every file a command writes): a stable content hash for cache keys,
+// whole-file reads, writes that never leave half a file under the final name,
+// and a lock that keeps two runs out of one output folder.
 #pragma once
 
 #include <cstdint>
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 namespace cdsim {
 
@@ -18,9 +21,32 @@ inline uint64_t fnv1a(std::string_view text, uint64_t hash = 1469598103934665603
 
 // Throws std::runtime_error naming the file.
 std::string read_text_file(const std::filesystem::path& path);
-// Writes path.partial, then renames it to path.
+// Writes a temporary file in the same folder (.NAME.PID.N.tmp), flushes it to
+// disk and renames it to path, so that path holds either its old content or
+// all of the new. A path that exists and is not a regular file (/dev/stdout,
+// /dev/full, a pipe) is written in place. Every failure (missing folder,
+// permission, full disk) throws std::runtime_error with the path and
+// strerror, and removes the temporary file.
 void write_file_atomic(const std::filesystem::path& path, const std::string& text);
+// The same for several files: all are written first, then all renamed, so a
+// failure in any leaves every one as it was.
+void write_files_atomic(const std::vector<std::pair<std::filesystem::path, std::string>>& files);
 // $XDG_CACHE_HOME/cdsim/<name>, else ~/.cache/cdsim/<name>, else a temporary folder.
 std::filesystem::path cache_root(const std::string& name);
+
+// An exclusive flock(2) on FOLDER/.cdsim.lock, held while the object lives
+// (the kernel drops it when the process ends, however it ends). A second run
+// on the same folder throws std::runtime_error naming the folder at once
+// instead of waiting. The lock file itself stays.
+class OutputFolderLock {
+ public:
+  explicit OutputFolderLock(const std::filesystem::path& folder);
+  ~OutputFolderLock();
+  OutputFolderLock(const OutputFolderLock&) = delete;
+  OutputFolderLock& operator=(const OutputFolderLock&) = delete;
+
+ private:
+  int fd_ = -1;
+};
 
 }  // namespace cdsim

@@ -5,6 +5,7 @@
 
 #include "cost.hpp"
 #include "exact.hpp"
+#include "interrupt.hpp"
 
 namespace cdsim {
 
@@ -50,6 +51,7 @@ DesignResult evaluate(const PreparedScene& prepared, const Design& design, const
   // dominate the model's own time.
   static thread_local std::vector<Fragment> fragments;
   for (size_t i = 0; i < prepared.unit.size(); ++i) {
+    throw_if_interrupted();  // SIGINT: every command that evaluates stops within a triangle
     fragments.clear();
     const TriangleRecord r = unit.run(prepared.unit[i], &fragments);
     result.pixels += r.pixels;

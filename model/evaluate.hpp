@@ -8,7 +8,7 @@
 
 #include "design.hpp"
 #include "scan_unit.hpp"
-#include "scene.hpp"
+#include "screen_scene.hpp"
 
 namespace cdsim {
 

@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <charconv>
+#include <map>
 #include <stdexcept>
 
 namespace cdsim {
@@ -38,17 +40,27 @@ void apply_setting(Widths& widths, const std::string& assignment) {
         fmt::format("setting '{}' is not of the form NAME=VALUE", assignment));
   const std::string name = assignment.substr(0, eq);
   const std::string text = assignment.substr(eq + 1);
-  size_t used = 0;
+  // Plain decimal: no spaces, '+', hex or exponent.
   long long value = 0;
-  try {
-    value = std::stoll(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != text.size())
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || error == std::errc::invalid_argument || end != text.data() + text.size())
     throw std::invalid_argument(
         fmt::format("setting '{}': value '{}' is not an integer", assignment, text));
+  if (error == std::errc::result_out_of_range)
+    throw std::invalid_argument(fmt::format("setting '{}': value {} is out of range", assignment, text));
   set_param(widths, name, value);
+}
+
+void apply_settings(Widths& widths, const std::vector<std::string>& assignments) {
+  std::map<std::string, std::string> seen;  // parameter -> its setting
+  for (const std::string& assignment : assignments) {
+    apply_setting(widths, assignment);
+    const std::string name = assignment.substr(0, assignment.find('='));
+    const auto [it, fresh] = seen.emplace(name, assignment);
+    if (!fresh)
+      throw std::invalid_argument(fmt::format(
+          "--set {} and --set {} both set parameter {}; give it once", it->second, assignment, name));
+  }
 }
 
 void validate(const Widths& w) {

@@ -34,6 +34,10 @@ const std::vector<ParamInfo>& param_table();
 // Applies "NAME=VALUE". Throws std::invalid_argument naming the parameter and
 // the allowed range when the name is unknown or the value is out of range.
 void apply_setting(Widths& widths, const std::string& assignment);
+// Applies each "NAME=VALUE" of a repeatable --set in turn; a parameter named
+// twice is refused (std::invalid_argument naming both settings), not the
+// later one silently taken.
+void apply_settings(Widths& widths, const std::vector<std::string>& assignments);
 void set_param(Widths& widths, const std::string& name, long long value);
 // Checks combinations that single ranges cannot (for example the accumulator
 // fitting 64 bits). Throws std::invalid_argument.

@@ -31,6 +31,9 @@ struct BenchOptions {
   uint64_t seed = 1;          // of the back-pressure (and named in every report)
   double backpressure = 0.0;  // probability that the fragment sink stalls a cycle
   std::string trace;          // FST waveform of the whole run, if not empty
+  // Per job: cycles without its record before a hang is reported
+  // (regress.cpp, hang_cycle_limit: scaled by the model's cycles and the back-pressure).
+  std::vector<int64_t> cycle_limits;
 };
 
 inline uint64_t mix_seed(uint64_t seed, uint64_t index) {
@@ -218,7 +221,7 @@ class Bench : public sc_core::sc_module {
       in_flight_ = true;
       stalls_ = 0;
       busy_cycles_ = 0;
-      cycle_limit_ = 10'000'000;
+      cycle_limit_ = options_.cycle_limits.at(current_);
       stall_rng_.seed(mix_seed(options_.seed, current_));
     } else if (!presenting_ && !in_flight_) {
       tri_valid.write(false);

@@ -4,20 +4,28 @@
 // Verilated scan unit against the C++ model.
 #include "regress.hpp"
 
-#include "loaders/scene_cli.hpp"
-
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <systemc.h>
 
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
 #include <cstdlib>
+#include <cstring>
+#include <filesystem>
 #include <iostream>
+#include <map>
+#include <memory>
+#include <tuple>
 
 #include "Vcd_scan_unit_default.h"
 #include "Vcd_scan_unit_narrow.h"
 #include "Vcd_scan_unit_wide.h"
 #include "bench.hpp"
 #include "evaluate.hpp"
+#include "interrupt.hpp"
 #include "random_triangles.hpp"
 #include "rtl_cache.hpp"
 #include "scene.hpp"
@@ -31,21 +39,7 @@ namespace cdsim::rtl {
 
 namespace {
 
-struct Options {
-  std::string scene = "default";
-  SceneOptions scene_options;
-  size_t random = 0;
-  uint64_t seed = 1;
-  double backpressure = 0.0;
-  std::string trace;
-  std::string widths = "default";
-  std::string design = "mix";
-  int64_t only = -1;
-  std::vector<std::string> settings;  // NAME=VALUE on top of `widths`
-  std::string rtl_cache;              // folder of the RTL verilated for --set widths
-  bool scene_and_random = false;      // the scene, then `random` triangles (size --verify)
-};
-Options options;
+RegressOptions options;  // of the run in progress
 
 struct WidthConfig {
   const char* name;
@@ -94,37 +88,57 @@ std::vector<const Design*> designs_for(const std::string& name) {
   return out;
 }
 
-}  // namespace
+// add_regress_command: app/regress_cli.cpp.
 
-CLI::App* add_regress_command(CLI::App& app) {
-  CLI::App* cmd = app.add_subcommand(
-      "regress", "run the SystemVerilog RTL (Verilator + SystemC) against the model, bit and cycle exact");
-  add_scene_options(cmd, options.scene, options.scene_options);  // ignored with --random
-  cmd->add_option("--random", options.random, "N seeded random triangles (with SPEC §9 hard cases)");
-  cmd->add_option("--seed", options.seed, "seed of the random triangles and of the back-pressure")
-      ->capture_default_str();
-  cmd->add_option("--backpressure", options.backpressure,
-                  "probability that the fragment sink stalls a cycle")
-      ->check(CLI::Range(0.0, 0.95))
-      ->capture_default_str();
-  cmd->add_option("--trace", options.trace, "write an FST waveform of the whole run to this file");
-  cmd->add_option("--widths", options.widths,
-                  "width configuration: default, narrow or wide (the base that --set changes)")
-      ->capture_default_str();
-  cmd->add_option("--set", options.settings,
-                  "NAME=VALUE: change a width or microarchitecture parameter (see 'cdsim widths'); "
-                  "repeatable. Widths no configuration has are verilated on first use and cached");
-  cmd->add_option("--rtl-cache", options.rtl_cache,
-                  "folder of the RTL verilated for --set widths (default $XDG_CACHE_HOME/cdsim/rtl "
-                  "or ~/.cache/cdsim/rtl)");
-  cmd->add_option("--design", options.design,
-                  "cd-none, cd-linear, cd-dense2, cd-dense4, cd-dense2-linear, or mix (each in turn)")
-      ->capture_default_str();
-  cmd->add_option("--only", options.only, "run only triangle N of the source (to chase a mismatch)");
-  return cmd;
+// InterruptWatch looks at the interrupt flag every 100 us of simulated time
+// (10,000 periods of the bench's 10 ns clock: milliseconds of wall time).
+constexpr int kInterruptPollNs = 100'000;
+
+// Pauses the simulation when SIGINT or SIGTERM arrives; regress() then stops
+// with Interrupted. The bench closes the waveform as at any other end.
+SC_MODULE(InterruptWatch) {
+  SC_CTOR(InterruptWatch) { SC_THREAD(watch); }
+  void watch() {
+    while (true) {
+      wait(sc_core::sc_time(kInterruptPollNs, sc_core::SC_NS));
+      if (interrupted()) sc_core::sc_pause();
+    }
+  }
+};
+
+// The bench's hang limit for each job, from the model's run of the job.
+std::vector<int64_t> hang_limits(const std::vector<Job>& jobs, const Widths& widths,
+                                 double backpressure) {
+  std::map<std::tuple<std::string, int, int>, std::unique_ptr<ScanUnit>> units;
+  std::vector<Fragment> fragments;
+  std::vector<int64_t> limits;
+  limits.reserve(jobs.size());
+  for (const Job& job : jobs) {
+    throw_if_interrupted();
+    auto& unit = units[{job.design->name, job.viewport_width, job.viewport_height}];
+    if (!unit)
+      unit = std::make_unique<ScanUnit>(*job.design, widths, job.viewport_width, job.viewport_height);
+    fragments.clear();
+    const TriangleRecord record = unit->run(job.triangle, &fragments);
+    limits.push_back(hang_cycle_limit(record.cycles, record.pixels, backpressure));
+  }
+  return limits;
 }
 
-namespace {
+// The folder of --trace must exist and be writable before minutes of simulation.
+void check_trace_path(const std::string& trace) {
+  if (trace.empty()) return;
+  namespace fs = std::filesystem;
+  const fs::path folder = fs::path(trace).parent_path();
+  std::error_code ignored;
+  if (!folder.empty() && !fs::is_directory(folder, ignored))
+    throw std::invalid_argument(fmt::format("--trace {}: the folder {} does not exist", trace, folder.string()));
+  if (fs::is_directory(trace, ignored))
+    throw std::invalid_argument(fmt::format("--trace {}: is a folder", trace));
+  if (::access(folder.empty() ? "." : folder.c_str(), W_OK) != 0)
+    throw std::invalid_argument(fmt::format("--trace {}: cannot write into {}: {}", trace,
+                                            folder.empty() ? "." : folder.string(), std::strerror(errno)));
+}
 
 // The built-in configuration with exactly these widths, or "" if none.
 std::string builtin_config_of(const Widths& widths) {
@@ -138,8 +152,9 @@ std::string builtin_config_of(const Widths& widths) {
 // configuration has run on the RTL verilated for them into the cache.
 int regress(const Widths* given) {
   Widths widths = given ? *given : widths_of(options.widths);
-  for (const std::string& s : options.settings) apply_setting(widths, s);
+  apply_settings(widths, options.settings);
   validate(widths);
+  check_trace_path(options.trace);
   const bool exact = given || !options.settings.empty();
   const std::string builtin = exact ? builtin_config_of(widths) : options.widths;
   std::string label = given ? "as sized" : options.widths;
@@ -181,29 +196,52 @@ int regress(const Widths* given) {
   std::cout << fmt::format("widths: {} ({})\n", label, describe(widths));
   std::cout << fmt::format("design: {}, back-pressure {}\n", options.design, options.backpressure);
   std::cout.flush();
-  const BenchOptions bench_options{options.seed, options.backpressure, options.trace};
-  if (builtin.empty()) {
-    const RunBench run_custom = load_custom_rtl(widths, options.rtl_cache);
-    return run_custom(&jobs, &widths, &bench_options);
-  }
-  if (builtin == "default") return run_bench<Vcd_scan_unit_default>(jobs, widths, bench_options);
-  if (builtin == "narrow") return run_bench<Vcd_scan_unit_narrow>(jobs, widths, bench_options);
-  return run_bench<Vcd_scan_unit_wide>(jobs, widths, bench_options);
+  BenchOptions bench_options;
+  bench_options.seed = options.seed;
+  bench_options.backpressure = options.backpressure;
+  bench_options.trace = options.trace;
+  bench_options.cycle_limits = hang_limits(jobs, widths, options.backpressure);
+  std::cout << fmt::format(
+      "hang limit: 4 x (model cycles + pixels x p / (1 - p)) + 1000 per triangle, at most {}\n",
+      bench_options.cycle_limits.empty()
+          ? int64_t{0}
+          : *std::max_element(bench_options.cycle_limits.begin(), bench_options.cycle_limits.end()));
+  std::cout.flush();
+  const RunBench run_custom = builtin.empty() ? load_custom_rtl(widths, options.rtl_cache) : nullptr;
+  InterruptWatch watch("interrupt_watch");
+  int status = 0;
+  if (run_custom) status = run_custom(&jobs, &widths, &bench_options);
+  else if (builtin == "default") status = run_bench<Vcd_scan_unit_default>(jobs, widths, bench_options);
+  else if (builtin == "narrow") status = run_bench<Vcd_scan_unit_narrow>(jobs, widths, bench_options);
+  else status = run_bench<Vcd_scan_unit_wide>(jobs, widths, bench_options);
+  throw_if_interrupted();
+  if (!options.trace.empty() && !std::filesystem::exists(options.trace))
+    throw std::runtime_error(fmt::format("--trace {}: the waveform was not written", options.trace));
+  return status;
 }
 
 }  // namespace
 
-int run_regress_command() {
+int64_t hang_cycle_limit(int64_t model_cycles, int64_t pixels, double backpressure) {
+  const double expected_stalls = double(pixels) * backpressure / (1.0 - backpressure);
+  return 4 * (model_cycles + static_cast<int64_t>(std::ceil(expected_stalls))) + 1000;
+}
+
+int run_regress_command(const RegressOptions& given) {
+  options = given;
   try {
     return regress(nullptr);
+  } catch (const Interrupted&) {
+    throw;
   } catch (const std::exception& e) {
+    throw_if_interrupted();  // a tool the RTL cache ran died of the same signal
     std::cerr << "cdsim regress: error: " << e.what() << '\n';
     return 2;
   }
 }
 
 int verify_widths(const VerifyRequest& request) {
-  options = Options{};
+  options = RegressOptions{};
   options.scene = request.scene;
   options.scene_options = request.scene_options;
   options.scene_and_random = true;
@@ -214,7 +252,10 @@ int verify_widths(const VerifyRequest& request) {
   options.rtl_cache = request.rtl_cache;
   try {
     return regress(&request.widths);
+  } catch (const Interrupted&) {
+    throw;
   } catch (const std::exception& e) {
+    throw_if_interrupted();
     std::cerr << "cdsim size --verify: error: " << e.what() << '\n';
     return 2;
   }

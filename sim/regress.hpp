@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "scene.hpp"
 #include "widths.hpp"
@@ -14,10 +15,34 @@ class App;
 
 namespace cdsim::rtl {
 
-// Registers the `regress` subcommand and its options on app.
-CLI::App* add_regress_command(CLI::App& app);
-// Runs it with the parsed options; returns the process exit code.
-int run_regress_command();
+struct RegressOptions {
+  std::string scene = "default";
+  SceneOptions scene_options;
+  size_t random = 0;                  // 0: the scene; else N random triangles instead
+  uint64_t seed = 1;
+  double backpressure = 0.0;
+  std::string trace;
+  std::string widths = "default";
+  std::string design = "mix";
+  int64_t only = -1;                  // -1: every triangle
+  std::vector<std::string> settings;  // NAME=VALUE on top of `widths`
+  std::string rtl_cache;              // folder of the RTL verilated for --set widths
+  bool scene_and_random = false;      // the scene, then `random` triangles (size --verify)
+};
+
+// Registers the `regress` subcommand and its options on app
+// (app/regress_cli.cpp: the command line needs no SystemC).
+CLI::App* add_regress_command(CLI::App& app, RegressOptions& options);
+// Runs it with the parsed options; returns the process exit code. Throws
+// Interrupted (interrupt.hpp) on SIGINT or SIGTERM.
+int run_regress_command(const RegressOptions& options);
+
+// Cycles the bench waits for a triangle's record before it reports a hang:
+// 4 x (the model's cycles + the stalls expected from back-pressure p, pixels
+// x p / (1 - p)) + 1000. The RTL's count is the model's plus the stalls, the
+// stall count of a pixel is geometric with mean p / (1 - p), so a legal
+// triangle exceeds this with negligible probability.
+int64_t hang_cycle_limit(int64_t model_cycles, int64_t pixels, double backpressure);
 
 // `cdsim size --verify`: regresses exactly these widths on the RTL, verilated
 // into the cache on first use as for `cdsim regress --set`: the scene, then

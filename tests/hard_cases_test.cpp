@@ -1,5 +1,5 @@
 // The hard-case suite (SPEC §9): each named case, run through every design at
-// default widths, shows the behaviour written beside it in model/hard_cases.cpp.
+// default widths, shows the behaviour written beside it in scene/hard_cases.cpp.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <nlohmann/json.hpp>
@@ -16,9 +17,11 @@
 #include "loaders/bsp.hpp"
 #include "loaders/file_io.hpp"
 #include "loaders/gltf.hpp"
+#include "loaders/limits.hpp"
 #include "loaders/obj.hpp"
 #include "loaders/pk3.hpp"
 #include "loaders/scene_file.hpp"
+#include "loaders/strict_text.hpp"
 #include "scene.hpp"
 
 namespace cdsim {
@@ -162,7 +165,9 @@ TEST(SceneOptions, CameraAndResolutionOptionsAreChecked) {
   EXPECT_INPUT_ERROR([] { parse_camera_option("1,2,3", 1); }, {"--camera", "found 3"});
   EXPECT_INPUT_ERROR([] { parse_camera_option("1,2,3,4,5,6,0,0,1,x", 1); }, {"--camera", "'x' is not a number"});
   EXPECT_INPUT_ERROR([] { parse_camera_option("1,2,3,4,5,6,0,0,1,", 1); }, {"--camera", "'' is not a number"});
-  EXPECT_INPUT_ERROR([] { parse_camera_option("nan,2,3,4,5,6,0,0,1,60", 1); }, {"--camera", "non-finite"});
+  EXPECT_INPUT_ERROR([] { parse_camera_option("nan,2,3,4,5,6,0,0,1,60", 1); }, {"--camera", "'nan' is not a finite number"});
+  EXPECT_INPUT_ERROR([] { parse_camera_option("1e13,2,3,4,5,6,0,0,1,60", 1); }, {"--camera", "'1e13' is out of range"});
+  EXPECT_INPUT_ERROR([] { parse_camera_option("0x1,2,3,4,5,6,0,0,1,60", 1); }, {"--camera", "'0x1' is not a number"});
   EXPECT_INPUT_ERROR([] { parse_camera_option("0,0,0,0,0,1,0,0,1,60", 1); }, {"--camera", "parallel"});
   EXPECT_INPUT_ERROR([] { parse_camera_option("0,0,0,0,1,0,0,0,1,0", 1); }, {"--camera", "fov_y 0"});
   EXPECT_EQ(parse_resolution_option("640x480"), glm::ivec2(640, 480));
@@ -221,7 +226,7 @@ TEST(Obj, MalformedFilesAreRefusedWithTheFaceNamed) {
   EXPECT_INPUT_ERROR(load("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/5 3/1\n"),
                      {"bad.obj", "texture coordinate 5", "has 1"});
   EXPECT_INPUT_ERROR(load("v 0 0 0\nv 1 0 0\nv 0 1 0\nf -1 -2 -7\n"), {"bad.obj", "refers to vertex"});
-  EXPECT_INPUT_ERROR(load("v 0 0 1e999\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"), {"bad.obj", "not finite"});
+  EXPECT_INPUT_ERROR(load("v 0 0 1e999\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"), {"bad.obj:1", "'1e999' is out of range"});
   // Nothing to draw is not an error: an empty mesh.
   EXPECT_EQ(load_obj_from_memory("", "", "empty.obj", kDefault).mesh.triangles.size(), 0u);
   EXPECT_EQ(load_obj_from_memory("v 0 0 0\nf 1 1\n", "", "line.obj", kDefault).mesh.triangles.size(), 0u);
@@ -314,10 +319,10 @@ TEST(Gltf, MalformedFilesAreRefused) {
   j["buffers"][0]["uri"] = "outside.bin";
   EXPECT_INPUT_ERROR(load(j), {"bad.gltf", "not a readable glTF"});
   j = good;
-  // x = 1e308 * 1 + 1e308 overflows to infinity at the quad's right edge.
+  // A matrix element beyond the range of a float is refused at its node.
   j["nodes"][0]["matrix"] = {1e308, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 1e308, 0, 0, 1};
   j["nodes"][0].erase("translation");
-  EXPECT_INPUT_ERROR(load(j), {"bad.gltf", "not finite"});
+  EXPECT_INPUT_ERROR(load(j), {"bad.gltf: node 0", "matrix[0] is 1e+308"});
   // A NaN position inside the buffer.
   std::string buffer;
   const std::vector<float> floats = {std::nanf(""), 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0,
@@ -525,7 +530,7 @@ TEST(Pk3, MalformedArchivesAndMissingEntriesAreRefused) {
   EXPECT_INPUT_ERROR([] { load_bsp(kData + "tiny.pk3:maps/other.bsp", kDefault); },
                      {"tiny.pk3", "no entry 'maps/other.bsp'", "holds 1 maps: maps/tiny.bsp"});
   EXPECT_INPUT_ERROR([] { load_bsp(kData + "none.pk3:maps/x.bsp", kDefault); },
-                     {"none.pk3", "cannot open as a zip"});
+                     {"none.pk3", "cannot open"});
   EXPECT_INPUT_ERROR([] { load_bsp(kData + "cube.obj.pk3:maps/x.bsp", kDefault); }, {"cube.obj.pk3"});
   EXPECT_INPUT_ERROR([] { load_scene(kData + "tiny.pk3"); }, {"tiny.pk3", "name a map inside"});
   std::vector<uint8_t> zip = read_file_bytes(kData + "tiny.pk3");
@@ -589,6 +594,302 @@ TEST(OpenArena, ThreeMapsFromSpawnZeroReachTheUnit) {
     const PreparedScene prepared = prepare(scene, Widths{});  // every triangle passes the unit's checks
     EXPECT_EQ(prepared.unit.size(), scene.triangles.size());
   }
+}
+
+// ------------------------------------------------------------- strict input
+// docs/scenes.md, "Strict input": numbers, byte-order marks, unprintable bytes,
+// files that are not regular files, size caps, scenes with nothing to draw.
+
+const std::string kBom = "\xEF\xBB\xBF";
+
+// A file in the test's temporary directory with `text`, its path returned.
+std::string temp_file(const std::string& name, const std::string& text) {
+  const std::string path = ::testing::TempDir() + name;
+  std::ofstream(path, std::ios::binary) << text;
+  return path;
+}
+
+TEST(StrictText, NumbersAreWholeFiniteAndInRange) {
+  EXPECT_EQ(parse_number("1.5").value, 1.5);
+  EXPECT_EQ(parse_number("+2").value, 2);
+  EXPECT_EQ(parse_number("-0.25e1").value, -2.5);
+  EXPECT_EQ(parse_number(".5").value, 0.5);
+  EXPECT_TRUE(parse_number("1e-400").ok());  // underflow: a finite number
+  for (const char* word : {"", "x", "1.5abc", "1,5", "0x10", "++1", "+-1", " 1", "1e", "1 2"})
+    EXPECT_EQ(parse_number(word).problem, NumberProblem::kNotANumber) << word;
+  for (const char* word : {"nan", "-nan", "inf", "-infinity", "nan(1)"})
+    EXPECT_EQ(parse_number(word).problem, NumberProblem::kNotFinite) << word;
+  EXPECT_EQ(parse_number("1e999").problem, NumberProblem::kOutOfRange);
+  EXPECT_EQ(parse_number("-1e309").problem, NumberProblem::kOutOfRange);
+  EXPECT_EQ(parse_number("4e38", 3.4e38).problem, NumberProblem::kOutOfRange);
+  EXPECT_EQ(number_problem(parse_number("1e999"), "1e999"),
+            "'1e999' is out of range: its magnitude exceeds 1.79769e+308");
+  EXPECT_EQ(parse_integer("-12"), -12);
+  EXPECT_EQ(parse_integer("+7"), 7);
+  for (const char* word : {"", "1.0", "12x", "99999999999999999999", "0x1", "+-1", "++1"})
+    EXPECT_FALSE(parse_integer(word).has_value()) << word;
+}
+
+TEST(StrictText, UnprintableBytesAreEscapedAndLongTextCut) {
+  EXPECT_EQ(quote_bytes(std::string("a\0b", 3)), "'a\\x00b'");
+  EXPECT_EQ(quote_bytes("\t\r\n\x7f\xff'"), "'\\t\\r\\n\\x7f\\xff\\''");
+  EXPECT_EQ(quote_bytes(std::string(50, 'z'), 4), "'zzzz' (cut; 50 bytes in all)");
+  EXPECT_EQ(without_utf8_bom(kBom + "v 1"), "v 1");
+  EXPECT_EQ(without_utf8_bom("\xEF\xBB"), "\xEF\xBB");
+}
+
+TEST(TriangleList, EveryNumberIsStrictAndNamedWithLineAndValue) {
+  const auto load = [](const std::string& text) { return [=] { load_triangle_text(text, "t.tri"); }; };
+  const std::string good = "1 1 1 0 0  5 2 1 0 0  3 9 1 0 0\n";
+  EXPECT_EQ(load_triangle_text(good, "t.tri").triangles.size(), 1u);
+  EXPECT_INPUT_ERROR(load("\n1 1 1 0 0  5 2 1e999 0 0  3 9 1 0 0\n"),
+                     {"t.tri:2: vertex 1 has a value out of range: w = '1e999'"});
+  EXPECT_INPUT_ERROR(load("1 1 1 0 0  5 2 1 0 0  3 9 1 0 -inf\n"),
+                     {"t.tri:1: vertex 2 has a non-finite value: v = '-inf'"});
+  EXPECT_INPUT_ERROR(load("1 1 1 0 0  5 2 1 0 0  3 9 1.5abc 0 0\n"), {"t.tri:1: '1.5abc' is not a number"});
+  EXPECT_INPUT_ERROR(load("1 1 1 0 0  5 2 1 0 0  3 9 0x1 0 0\n"), {"t.tri:1: '0x1' is not a number"});
+  EXPECT_INPUT_ERROR(load("resolution 64.5 64\n" + good), {"t.tri:1: resolution '64.5' is not an integer"});
+  EXPECT_INPUT_ERROR(load("resolution 64 99999999999999999999\n"), {"t.tri:1", "is not an integer"});
+  EXPECT_INPUT_ERROR(load("resolution 64 64 1\n"), {"t.tri:1", "expected 'resolution W H'"});
+}
+
+// Before, the message stopped at the first NUL: "t.tri:1: '".
+TEST(TriangleList, NulAndOtherUnprintableBytesAreShownEscaped) {
+  try {
+    load_triangle_text(std::string("\0\0\0 1 1 0 0  5 2 1 0 0  3 9 1 0 0\n", 34), "t.tri");
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "t.tri:1: '\\x00\\x00\\x00' is not a number");
+  }
+  EXPECT_INPUT_ERROR([] { load_triangle_text("1 1 1 0 0  5 2 1 0 0  3 9 1 0 \x1b[31m\n", "t.tri"); },
+                     {"t.tri:1: '\\x1b[31m' is not a number"});
+}
+
+TEST(TriangleList, ByteOrderMarkAndCarriageReturnsChangeNothing) {
+  const std::string text = "resolution 64 48\n1 1 1 0 0  40 2 1 0 0  3 40 1 10 10\n";
+  std::string crlf;
+  for (const char c : text) crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
+  const Scene plain = load_triangle_text(text, "t.tri");
+  for (const std::string& variant : {kBom + text, kBom + crlf}) {
+    const Scene scene = load_scene(temp_file("bom.tri", variant));
+    EXPECT_EQ(scene.width, 64);
+    EXPECT_EQ(scene.height, 48);
+    ASSERT_EQ(scene.triangles.size(), 1u);
+    for (size_t i = 0; i < 3; ++i) {
+      EXPECT_EQ(scene.triangles[0].vertex[i].x, plain.triangles[0].vertex[i].x);
+      EXPECT_EQ(scene.triangles[0].vertex[i].v, plain.triangles[0].vertex[i].v);
+    }
+  }
+  // A mark anywhere but at the start is no number.
+  EXPECT_INPUT_ERROR([&] { load_triangle_text("\n" + kBom + "1 1 1 0 0  40 2 1 0 0  3 40 1 10 10\n", "t.tri"); },
+                     {"t.tri:2: '\\xef\\xbb\\xbf1' is not a number"});
+}
+
+TEST(TriangleList, ListWithoutTrianglesIsRefused) {
+  EXPECT_INPUT_ERROR([] { load_scene(temp_file("none.tri", "# nothing\nresolution 8 8\n")); },
+                     {"none.tri: no triangle to draw", "no triangle lines"});
+  EXPECT_INPUT_ERROR([] { load_scene(temp_file("blank.tri", "")); }, {"blank.tri: no triangle to draw"});
+}
+
+TEST(Files, DirectoriesAndDevicesAreRefusedBeforeOpening) {
+  const std::string folder = ::testing::TempDir() + "folder.obj";
+  std::filesystem::create_directories(folder);
+  EXPECT_INPUT_ERROR([&] { read_file_bytes(folder); }, {"folder.obj: is a directory, not a regular file"});
+  EXPECT_INPUT_ERROR([] { read_file_bytes("/dev/zero"); }, {"/dev/zero: is a character device"});
+  SceneOptions camera;
+  camera.camera = "0,0,5,0,0,0,0,1,0,60";
+  EXPECT_INPUT_ERROR([&] { load_scene(folder, camera); }, {"folder.obj: is a directory"});
+  EXPECT_INPUT_ERROR([] { load_scene("/dev/null"); }, {"/dev/null: is a character device"});
+  EXPECT_INPUT_ERROR([] { load_scene(CDSIM_TEST_DATA); }, {"data: is a directory"});
+  EXPECT_INPUT_ERROR([&] { load_scene(temp_file("dir.json", R"({"mesh": "folder.obj", "camera": {"eye": [0,0,1], "target": [0,0,0], "fov_y": 60}})")); },
+                     {"folder.obj: is a directory"});
+  const std::string pk3_folder = ::testing::TempDir() + "folder.pk3";
+  std::filesystem::create_directories(pk3_folder);
+  EXPECT_INPUT_ERROR([&] { Pk3Archive::open_file(pk3_folder); }, {"folder.pk3: is a directory"});
+  EXPECT_INPUT_ERROR([] { Pk3Archive::open_file("/dev/zero"); }, {"/dev/zero: is a character device"});
+  // A directory entry inside an archive (folders.pk3 holds "maps/" explicitly).
+  EXPECT_INPUT_ERROR([] { load_bsp(kData + "folders.pk3:maps/", kDefault); },
+                     {"folders.pk3:maps/: is a directory in the archive"});
+  EXPECT_EQ(load_bsp(kData + "folders.pk3:maps/tiny.bsp", kDefault).spawns.size(), 2u);
+}
+
+// Sparse files: the cap is checked from the size before any byte is read.
+TEST(Files, EveryFormatHasASizeCapStatedInTheMessage) {
+  for (const char* name : {"big.tri", "big.obj", "big.json", "big.gltf", "big.glb", "big.bsp"}) {
+    const std::string path = ::testing::TempDir() + name;
+    std::ofstream(path, std::ios::binary) << "x";
+    std::filesystem::resize_file(path, limits::kMaxFileBytes + 1);
+    SceneOptions camera;
+    camera.camera = "0,0,5,0,0,0,0,1,0,60";
+    const std::string spec = path;
+    EXPECT_INPUT_ERROR([&] { load_scene(spec, std::string(name) == "big.tri" ? SceneOptions{} : camera); },
+                       {name, "larger than the 256 MiB cap on input files", "268435457 bytes"});
+    std::filesystem::remove(path);
+  }
+}
+
+TEST(Obj, EveryNumberOfVertexTexcoordNormalAndFaceLinesIsChecked) {
+  const auto load = [](const std::string& text) {
+    return [=] { load_obj_from_memory(text, "", "bad.obj", kDefault); };
+  };
+  const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  EXPECT_INPUT_ERROR(load("v 0 0 0\nv 1 abc 0\n"), {"bad.obj:2: 'v' number 2: 'abc' is not a number"});
+  EXPECT_INPUT_ERROR(load("v 0 0 0\nv 1 1.5abc 0\n"), {"bad.obj:2: 'v' number 2: '1.5abc' is not a number"});
+  EXPECT_INPUT_ERROR(load("v 1 2\n"), {"bad.obj:1: 'v' expects x y z [w] [r g b] (3 to 7 numbers), found 2"});
+  EXPECT_INPUT_ERROR(load("v 1e39 0 0\n"), {"bad.obj:1: 'v' number 1: '1e39' is out of range", "floats"});
+  EXPECT_INPUT_ERROR(load("v 0 nan 0\n"), {"bad.obj:1: 'v' number 2: 'nan' is not a finite number"});
+  EXPECT_INPUT_ERROR(load(tri + "vt 0.5 inf\n"), {"bad.obj:4: 'vt' number 2: 'inf' is not a finite number"});
+  EXPECT_INPUT_ERROR(load(tri + "vt 0 0 0 0\n"), {"bad.obj:4: 'vt' expects u [v [w]] (1 to 3 numbers), found 4"});
+  EXPECT_INPUT_ERROR(load(tri + "vn 0 0 1x\n"), {"bad.obj:4: 'vn' number 3: '1x' is not a number"});
+  EXPECT_INPUT_ERROR(load(tri + "vn 0 1\n"), {"bad.obj:4: 'vn' expects x y z (3 numbers), found 2"});
+  EXPECT_INPUT_ERROR(load(tri + "f 1 2 x\n"), {"bad.obj:4: 'f' corner 3: 'x' is not a vertex reference"});
+  EXPECT_INPUT_ERROR(load(tri + "f 1 2 0\n"), {"bad.obj:4: 'f' corner 3: '0'"});
+  EXPECT_INPUT_ERROR(load(tri + "f 1 2 3.5\n"), {"bad.obj:4: 'f' corner 3: '3.5'"});
+  EXPECT_INPUT_ERROR(load(tri + "f 1/1/1/1 2 3\n"), {"bad.obj:4: 'f' corner 1: '1/1/1/1'"});
+  EXPECT_INPUT_ERROR(load(tri + "f 1/ 2 3\n"), {"bad.obj:4: 'f' corner 1: '1/'"});
+  EXPECT_INPUT_ERROR(load(tri + "f 99999999999 2 3\n"), {"bad.obj:4: 'f' corner 1"});
+  EXPECT_INPUT_ERROR(load(tri + "f\n"), {"bad.obj:4: 'f' has no corners"});
+  EXPECT_INPUT_ERROR(load(tri + std::string("f 1 2\0 3\n", 10)), {"bad.obj:4: 'f' corner 2: '2\\x00'"});
+  // Valid forms, signs and trailing comments pass.
+  EXPECT_EQ(load_obj_from_memory(tri + "vt 0\nvt 1 0 0\nvn 0 0 1\nf 1/1/1 2//1 +3/-1 # comment\n", "", "ok.obj", kDefault)
+                .mesh.triangles.size(),
+            1u);
+  EXPECT_EQ(load_obj_from_memory("v 0 0 0 1 # w\nv 1 0 0 1 0.5 0.5 0.5\nv 0 1 0 1 1 1\nf -3 -2 -1\n", "", "ok.obj", kDefault)
+                .mesh.triangles.size(),
+            1u);
+}
+
+TEST(Obj, ByteOrderMarksOfObjAndMtlChangeNothing) {
+  // The MTL starts with a directive, so that a mark left in place would hide the first material.
+  const std::string obj = read_text(kData + "cube.obj");
+  const std::string mtl = "newmtl checker\nKd 1 1 1\nmap_Kd checker_64x32.png\nnewmtl plain\nKd 0.5 0.5 0.5\n";
+  const std::string dir = ::testing::TempDir() + "bom_cube/";
+  std::filesystem::create_directories(dir);
+  std::filesystem::copy_file(kData + "checker_64x32.png", dir + "checker_64x32.png",
+                             std::filesystem::copy_options::overwrite_existing);
+  temp_file("bom_cube/cube.obj", kBom + obj);
+  temp_file("bom_cube/cube.mtl", kBom + mtl);
+  const LoadedObj plain = load_obj(kData + "cube.obj", kDefault);
+  const LoadedObj marked = load_obj(dir + "cube.obj", kDefault);
+  ASSERT_EQ(marked.mesh.triangles.size(), plain.mesh.triangles.size());
+  EXPECT_EQ(marked.mesh.texture_size, plain.mesh.texture_size);  // the MTL's first material is read
+  for (size_t i = 0; i < plain.mesh.vertices.size(); ++i)
+    EXPECT_EQ(marked.mesh.vertices[i].position, plain.mesh.vertices[i].position) << i;
+  EXPECT_EQ(marked.summary, plain.summary);
+  // A mark left before a first 'v' would drop that vertex.
+  EXPECT_EQ(load_obj_from_memory(kBom + "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "", "m.obj", kDefault)
+                .mesh.triangles.size(),
+            1u);
+}
+
+TEST(JsonScene, IntegersCoordinatesAndTextAreCheckedWithTheValueNamed) {
+  const std::string p = "bad.json";
+  const auto parse = [&](const std::string& text) { return [=] { parse_scene_json(text, p); }; };
+  EXPECT_INPUT_ERROR(parse(R"({"mesh": "a.bsp", "spawn": 18446744073709551615})"),
+                     {"'spawn'", "expected an integer in 0..1000000, found 18446744073709551615"});
+  EXPECT_INPUT_ERROR(parse(R"({"mesh": "a.bsp", "spawn": 2.0})"), {"'spawn'", "found 2.0"});
+  EXPECT_INPUT_ERROR(parse(R"({"mesh": "a.obj", "resolution": [18446744073709551615, 10]})"),
+                     {"'resolution'", "element 0 is 18446744073709551615, outside 1..8192"});
+  EXPECT_INPUT_ERROR(parse(R"({"mesh": "a.obj", "camera": {"eye": [1e13,0,1], "target": [0,0,0], "fov_y": 60}})"),
+                     {"'camera.eye[0]'", "10000000000000.0 is outside +-1e+12"});
+  EXPECT_INPUT_ERROR(parse(R"({"mesh": "a.obj", "camera": {"eye": [0,0,1], "target": [0,0,0], "fov_y": "wide"}})"),
+                     {"'camera.fov_y'", "expected a number, found string \"wide\""});
+  EXPECT_INPUT_ERROR(parse(R"({"mesh": "a\u0000.obj"})"), {"'mesh'", "\"a\\u0000.obj\" holds a control character"});
+  EXPECT_INPUT_ERROR(parse(R"({"mesh": true})"), {"'mesh'", "expected a string, found boolean true"});
+  const SceneFile marked = parse_scene_json(kBom + R"({"mesh": "a.obj", "resolution": [64, 48]})", "s.json");
+  EXPECT_EQ(*marked.resolution, glm::ivec2(64, 48));
+}
+
+TEST(JsonScene, SceneWhoseMeshOrViewHoldsNoTriangleIsRefused) {
+  EXPECT_INPUT_ERROR([] { load_scene(kData + "looking_away.json"); },
+                     {"looking_away.json: no triangle to draw", "none of the mesh's 12 triangles", "--camera 3,2,4,6,4,8"});
+  temp_file("empty_mesh.obj", "# nothing\nv 0 0 0\n");
+  EXPECT_INPUT_ERROR([] { load_scene(temp_file("empty_mesh.json", R"({"mesh": "empty_mesh.obj", "camera": {"eye": [0,0,1], "target": [0,0,0], "fov_y": 60}})")); },
+                     {"empty_mesh.json: no triangle to draw: the OBJ", "0 triangles"});
+  // The same file through the loader alone is an empty mesh, not an error.
+  EXPECT_TRUE(load_obj(::testing::TempDir() + "empty_mesh.obj", kDefault).mesh.triangles.empty());
+  EXPECT_GT(load_scene(kData + "bom_scene.json").triangles.size(), 0u);
+}
+
+TEST(Gltf, RequiredExtensionsUnusablePrimitivesAndOverflowingNodesAreRefused) {
+  const nlohmann::json good = nlohmann::json::parse(read_text(kData + "quad.gltf"));
+  const auto load = [](const nlohmann::json& j, const std::string& prefix = "") {
+    const std::string text = prefix + j.dump();
+    return [=] {
+      load_gltf_from_memory(reinterpret_cast<const uint8_t*>(text.data()), text.size(), "bad.gltf", kDefault);
+    };
+  };
+  nlohmann::json j = good;
+  j["extensionsUsed"] = {"KHR_draco_mesh_compression"};
+  j["extensionsRequired"] = {"KHR_draco_mesh_compression"};
+  EXPECT_INPUT_ERROR(load(j), {"bad.gltf: requires the extension 'KHR_draco_mesh_compression'"});
+  j["extensionsUsed"] = {"KHR_texture_transform"};
+  j["extensionsRequired"] = {"KHR_texture_transform"};
+  EXPECT_INPUT_ERROR(load(j), {"'KHR_texture_transform'"});
+  j["extensionsUsed"] = {"KHR_materials_unlit"};
+  j["extensionsRequired"] = {"KHR_materials_unlit"};
+  EXPECT_NO_THROW(load(j)());
+  j = good;
+  j["meshes"][0]["primitives"][0]["mode"] = 1;  // lines
+  EXPECT_INPUT_ERROR(load(j), {"bad.gltf: no usable primitive", "points or lines"});
+  j = good;
+  j["meshes"][0]["primitives"] = nlohmann::json::array();
+  EXPECT_INPUT_ERROR(load(j), {"bad.gltf: no triangle to draw", "instances no mesh primitive"});
+  j = good;
+  j["nodes"][0].erase("mesh");
+  EXPECT_INPUT_ERROR(load(j), {"bad.gltf: no triangle to draw"});
+  // Scales that are each finite but multiply beyond a float, named by node.
+  j = good;
+  j["nodes"] = {{{"children", {1}}, {"scale", {1e30, 1e30, 1e30}}},
+                {{"name", "inner"}, {"mesh", 0}, {"scale", {1e30, 1e30, 1e30}}}};
+  j["scenes"][0]["nodes"] = {0};
+  EXPECT_INPUT_ERROR(load(j), {"bad.gltf: node 1 'inner'", "overflows", "1.0000000000000001e+60"});
+  j = good;
+  j["nodes"][0]["scale"] = {1, 1e300, 1};
+  EXPECT_INPUT_ERROR(load(j), {"bad.gltf: node 0: scale[1] is 1e+300"});
+  // A transform within range that takes a vertex beyond it: named by node and triangle.
+  j = good;
+  j["nodes"][0]["matrix"] = {3e38, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 3e38, 0, 0, 1};
+  j["nodes"][0].erase("translation");
+  EXPECT_INPUT_ERROR(load(j), {"bad.gltf: node 0 mesh 0 primitive 0 triangle 0", "is outside +-3.40282e+38"});
+  // A byte-order mark before the JSON changes nothing.
+  j = good;
+  j["images"][0] = {{"uri", "data:image/png;base64," + base64(read_text(kData + "checker_64x32.png"))}};
+  const std::string marked = kBom + j.dump();
+  const LoadedGltf gltf =
+      load_gltf_from_memory(reinterpret_cast<const uint8_t*>(marked.data()), marked.size(), "m.gltf", kDefault);
+  EXPECT_EQ(gltf.mesh.triangles.size(), 2u);
+  EXPECT_EQ(gltf.mesh.texture_size[0], glm::ivec2(64, 32));
+}
+
+TEST(Gltf, ExternalBuffersAreRegularFilesWithinTheCap) {
+  nlohmann::json j = nlohmann::json::parse(read_text(kData + "quad.gltf"));
+  const std::string dir = ::testing::TempDir() + "gltf_buffers/";
+  std::filesystem::create_directories(dir + "folder.bin");
+  j["buffers"][0]["uri"] = "folder.bin";
+  temp_file("gltf_buffers/folder.gltf", j.dump());
+  EXPECT_INPUT_ERROR([&] { load_gltf(dir + "folder.gltf", kDefault); }, {"folder.gltf", "folder.bin: is a directory"});
+  const std::string big = dir + "big.bin";
+  std::ofstream(big) << "x";
+  std::filesystem::resize_file(big, limits::kMaxFileBytes + 1);
+  j["buffers"][0]["uri"] = "big.bin";
+  temp_file("gltf_buffers/big.gltf", j.dump());
+  EXPECT_INPUT_ERROR([&] { load_gltf(dir + "big.gltf", kDefault); }, {"big.gltf", "big.bin", "256 MiB cap"});
+  std::filesystem::remove(big);
+}
+
+TEST(Bsp, SpawnNumbersAreStrictAndTheirTextEscaped) {
+  const std::string good = tiny_bsp(), origin = "\"0 -200 0\"";
+  // Each the same length as the origin, so that no offset moves.
+  for (const std::string bad : {"\"0 -20e 0\"", "\"0 0x10 0\"", "\"0 -inf 0\"", "\"0 1e13 0\"", "\"0 -20\x01 0\""}) {
+    ASSERT_EQ(bad.size(), origin.size());
+    std::string bytes = good;
+    bytes.replace(bytes.find(origin), origin.size(), bad);
+    EXPECT_INPUT_ERROR([&] { load_bsp_bytes(bytes); }, {"entity 1 (info_player_deathmatch)", "is not 3 finite numbers"});
+  }
+  std::string bytes = good;
+  bytes.replace(bytes.find(origin), origin.size(), "\"0 -20\x01 0\"");
+  EXPECT_INPUT_ERROR([&] { load_bsp_bytes(bytes); }, {"\"origin\" \"0 -20\\x01 0\" is not 3 finite numbers"});
 }
 
 }  // namespace

@@ -153,3 +153,39 @@ with zipfile.ZipFile('tiny.pk3', 'w', zipfile.ZIP_DEFLATED) as z:
         info = zipfile.ZipInfo(name, date_time=(2024, 1, 1, 0, 0, 0))
         info.compress_type = zipfile.ZIP_DEFLATED
         z.writestr(info, data)
+
+# --- Strict parsing and caps (docs/scenes.md, "Strict input"), for the
+# command-line checks in tests/CMakeLists.txt.
+# An OBJ whose second vertex has a word that is not a number.
+write('garbage_number.obj', "v 0 0 0\nv 1 abc 0\nv 0 1 0\nf 1 2 3\n")
+# The cube's scene with a UTF-8 byte-order mark, and one whose camera looks away.
+write('bom_scene.json', b'\xef\xbb\xbf' + json.dumps({
+    "mesh": "cube.obj",
+    "camera": {"eye": [3, 2, 4], "target": [0, 0, 0], "up": [0, 1, 0], "fov_y": 50},
+    "resolution": [64, 48]}, indent=1).encode() + b"\n")
+write('looking_away.json', json.dumps({
+    "mesh": "cube.obj",
+    "camera": {"eye": [3, 2, 4], "target": [6, 4, 8], "up": [0, 1, 0], "fov_y": 50},
+    "resolution": [64, 48]}, indent=1) + "\n")
+# glTF variants of the quad: an extension cdsim cannot read is required; only
+# points; a node hierarchy whose scales multiply beyond the range of a float.
+draco = gltf({"uri": "checker_64x32.png"})
+draco["extensionsUsed"] = ["KHR_draco_mesh_compression"]
+draco["extensionsRequired"] = ["KHR_draco_mesh_compression"]
+write('draco_required.gltf', json.dumps(draco, indent=1) + "\n")
+points = gltf({"uri": "checker_64x32.png"})
+points["meshes"][0]["primitives"][0]["mode"] = 0
+write('points_only.gltf', json.dumps(points, indent=1) + "\n")
+overflow = gltf({"uri": "checker_64x32.png"})
+overflow["scenes"] = [{"nodes": [0]}]
+overflow["nodes"] = [{"children": [1], "scale": [1e30, 1e30, 1e30]},
+                     {"name": "inner", "mesh": 0, "scale": [1e30, 1e30, 1e30]}]
+write('scale_overflow.gltf', json.dumps(overflow, indent=1) + "\n")
+# A .pk3 with explicit directory entries, as some zip tools write them.
+with zipfile.ZipFile('folders.pk3', 'w', zipfile.ZIP_DEFLATED) as z:
+    for name, data in [('maps/', b''), ('maps/tiny.bsp', bsp)]:
+        info = zipfile.ZipInfo(name, date_time=(2024, 1, 1, 0, 0, 0))
+        info.compress_type = zipfile.ZIP_STORED if name.endswith('/') else zipfile.ZIP_DEFLATED
+        if name.endswith('/'):
+            info.external_attr = 0o40755 << 16 | 0x10
+        z.writestr(info, data)

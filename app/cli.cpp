@@ -1,0 +1,44 @@
+#include "cli.hpp"
+
+#include "cli_checks.hpp"
+
+namespace cdsim {
+
+std::unique_ptr<Cli> make_cli() {
+  auto cli = std::make_unique<Cli>();
+  CLI::App& app = cli->app;
+  app.require_subcommand(0, 1);
+
+  cli->run_command = app.add_subcommand("run", "run a scene through the designs (the default command)");
+  add_common(cli->run_command, cli->run);
+  cli->run_command->add_option("--json", cli->json_path, "also write the results as JSON to this file");
+  cli->run_command->add_flag("--worst", cli->show_worst, "print each design's worst pixel");
+
+  cli->bench_command = app.add_subcommand("bench", "model throughput per design, in M pixels/s");
+  add_common(cli->bench_command, cli->bench);
+  cli->bench_command->add_option("--seconds", cli->bench_seconds, "minimum time per design")
+      ->check(cli::number_in(0, 3600, true))
+      ->capture_default_str();
+
+  cli->widths_command =
+      app.add_subcommand("widths", "list the width and microarchitecture parameters");
+  cli->widths_command->add_option("--set", cli->widths.settings,
+                                  "NAME=VALUE, as for run; repeatable, each parameter once");
+  cli->widths_command->add_option("--sv", cli->sv_path,
+                                  "write the RTL's cd_widths.svh (parameters, derived widths, "
+                                  "flags, word layout) to this file, or - for stdout");
+
+  cli->regress_command = rtl::add_regress_command(app, cli->regress);
+  cli->sweep_command = add_sweep_command(app, cli->sweep);
+  cli->designs_command = app.add_subcommand("designs", "list the designs");
+  cli->hard_cases_command =
+      app.add_subcommand("hard-cases", "list the named hard cases (--scene hard:NAME, hard:all)");
+  cli->render_command = add_render_command(app, cli->render);
+  cli->size_command = add_size_command(app, cli->size);
+  cli->area_command = add_area_command(app, cli->area);
+
+  cli::make_strict(app);
+  return cli;
+}
+
+}  // namespace cdsim

@@ -1,0 +1,44 @@
+// The cdsim command line: every subcommand and option, with their checks
+// (cli_checks.hpp), built apart from running them so that tests and the
+// fuzzer (tests/fuzz/fuzz_cli.cpp) can parse an argv without executing a
+// command. app/cdsim.cpp parses and runs.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <memory>
+#include <string>
+
+#include "area.hpp"
+#include "common.hpp"
+#include "regress.hpp"
+#include "render.hpp"
+#include "size.hpp"
+#include "sweep.hpp"
+
+namespace cdsim {
+
+struct Cli {
+  CLI::App app{"cdsim: cycle-level simulator of the constant-depth scan texture unit"};
+  // What the options parse into, per subcommand.
+  CommonOptions run, bench, widths;
+  std::string json_path;       // run --json
+  bool show_worst = false;     // run --worst
+  double bench_seconds = 1.0;  // bench --seconds
+  std::string sv_path;         // widths --sv
+  rtl::RegressOptions regress;
+  SweepOptions sweep;
+  RenderOptions render;
+  SizeOptions size;
+  AreaOptions area;
+  // The subcommands; none given means run.
+  CLI::App *run_command = nullptr, *bench_command = nullptr, *widths_command = nullptr,
+           *regress_command = nullptr, *sweep_command = nullptr, *designs_command = nullptr,
+           *hard_cases_command = nullptr, *render_command = nullptr, *size_command = nullptr,
+           *area_command = nullptr;
+};
+
+// Builds the whole command line. The options refer into the Cli, which
+// therefore stays where it is built.
+std::unique_ptr<Cli> make_cli();
+
+}  // namespace cdsim

@@ -1,0 +1,52 @@
+// The options of `cdsim regress` (sim/regress.cpp runs it): apart from the
+// bench so that the command line builds, and is fuzzed, without SystemC.
+#include <CLI/CLI.hpp>
+
+#include <limits>
+
+#include "cli_checks.hpp"
+#include "loaders/scene_cli.hpp"
+#include "regress.hpp"
+
+namespace cdsim::rtl {
+
+// More random triangles than this are refused: each job is held in memory.
+constexpr uint64_t kMaxRandomTriangles = 10'000'000;
+
+CLI::App* add_regress_command(CLI::App& app, RegressOptions& options) {
+  CLI::App* cmd = app.add_subcommand(
+      "regress", "run the SystemVerilog RTL (Verilator + SystemC) against the model, bit and cycle exact");
+  add_scene_options(cmd, options.scene, options.scene_options);
+  CLI::Option* random =
+      cmd->add_option("--random", options.random,
+                      "N seeded random triangles (with SPEC §9 hard cases) instead of a scene")
+          ->check(cli::unsigned_in(1, kMaxRandomTriangles));
+  for (const char* scene_option : {"--scene", "--camera", "--spawn", "--resolution"})
+    random->excludes(cmd->get_option(scene_option));
+  cmd->add_option("--seed", options.seed, "seed of the random triangles and of the back-pressure")
+      ->check(cli::unsigned_in(0, std::numeric_limits<uint64_t>::max()))
+      ->capture_default_str();
+  cmd->add_option("--backpressure", options.backpressure,
+                  "probability that the fragment sink stalls a cycle")
+      ->check(cli::number_in(0.0, 0.95))
+      ->capture_default_str();
+  cmd->add_option("--trace", options.trace, "write an FST waveform of the whole run to this file");
+  cmd->add_option("--widths", options.widths,
+                  "width configuration: default, narrow or wide (the base that --set changes)")
+      ->capture_default_str();
+  cmd->add_option("--set", options.settings,
+                  "NAME=VALUE: change a width or microarchitecture parameter (see 'cdsim widths'); "
+                  "repeatable, each parameter once. Widths no configuration has are verilated on "
+                  "first use and cached");
+  cmd->add_option("--rtl-cache", options.rtl_cache,
+                  "folder of the RTL verilated for --set widths (default $XDG_CACHE_HOME/cdsim/rtl "
+                  "or ~/.cache/cdsim/rtl)");
+  cmd->add_option("--design", options.design,
+                  "a design with RTL (see 'cdsim designs'), or mix (each in turn)")
+      ->capture_default_str();
+  cmd->add_option("--only", options.only, "run only triangle N of the source, from 0 (to chase a mismatch)")
+      ->check(cli::integer_in(0, std::numeric_limits<int64_t>::max()));
+  return cmd;
+}
+
+}  // namespace cdsim::rtl

@@ -1,0 +1,40 @@
+// Caps that keep a hostile or broken input file from exhausting memory or
+// time. A file that exceeds one is refused with an InputError that names the
+// cap, never truncated silently.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+namespace cdsim::limits {
+
+// Largest file (or archive entry) read into memory. The largest OpenArena map
+// is 7.6 MB; glTF buffers of real scenes stay far below this.
+inline constexpr uint64_t kMaxFileBytes = uint64_t{256} << 20;
+
+// Largest mesh handed to the front end, in triangles (after patch tessellation
+// and glTF instancing): about 600 MB of mesh. The largest OpenArena map makes
+// a few hundred thousand.
+inline constexpr size_t kMaxTriangles = size_t{1} << 22;
+
+// Largest texture, in texels per side (SPEC §9: textures up to 16384 texels).
+inline constexpr int kMaxTextureSize = 16384;
+
+// Largest viewport, in pixels per side (SPEC §1).
+inline constexpr int kMaxResolution = 8192;
+
+// Deepest glTF node hierarchy followed (a cyclic hierarchy is refused).
+inline constexpr int kMaxNodeDepth = 64;
+
+// Largest magnitude of a mesh coordinate after every transform: the largest
+// float, the widest any of the formats stores a position in. A glTF node
+// transform that goes beyond it has overflowed, and the front end's products
+// (view, projection, clipping) stay finite in double precision below it.
+inline constexpr double kMaxMeshCoordinate = 3.4028234663852886e38;  // FLT_MAX
+
+// Largest magnitude of a camera's eye, target and up coordinates and of its
+// near plane (the far plane is 10^6 near planes): beyond it the view and
+// projection matrices lose every digit of a mesh of any real size.
+inline constexpr double kMaxCameraCoordinate = 1e12;
+
+}  // namespace cdsim::limits

@@ -1,0 +1,280 @@
+// The command line, sweep files, output files and the interrupt flag
+// (app/cli.cpp, cli_checks.cpp, sweep_file.cpp, model/cache_files.cpp,
+// model/interrupt.cpp): bad input is refused naming the option and the value
+// or the file and line; outputs are whole or absent; a folder takes one run
+// at a time; a signal stops with 128 + its number.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <csignal>
+#include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <functional>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cache_files.hpp"
+#include "cli.hpp"
+#include "interrupt.hpp"
+#include "regress.hpp"
+#include "sweep_file.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+// Parses args as cdsim does.
+void parse(cdsim::Cli& cli, std::vector<std::string> args) {
+  args.insert(args.begin(), "cdsim");
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  cli.app.parse(int(argv.size()), argv.data());
+}
+
+// CLI11's message, or "" if the command line is accepted.
+std::string parse_error(const std::vector<std::string>& args) {
+  const std::unique_ptr<cdsim::Cli> cli = cdsim::make_cli();
+  try {
+    parse(*cli, args);
+  } catch (const CLI::ParseError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string sweep_file_error(const std::string& text) {
+  std::istringstream in(text);
+  try {
+    cdsim::parse_sweep_file(in, "t.sweep");
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string what_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "";
+}
+
+fs::path fresh_folder(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("cdsim_cli_test_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+size_t files_in(const fs::path& dir) {
+  size_t n = 0;
+  for ([[maybe_unused]] const auto& entry : fs::directory_iterator(dir)) ++n;
+  return n;
+}
+
+}  // namespace
+
+TEST(CommandLine, RefusesNonFiniteNumbersNamingOptionAndValue) {
+  EXPECT_PRED2(contains, parse_error({"size", "--max-error", "nan"}), "--max-error: 'nan' is not a finite number");
+  EXPECT_PRED2(contains, parse_error({"size", "--max-error", "inf"}), "--max-error: 'inf' is not a finite number");
+  EXPECT_PRED2(contains, parse_error({"regress", "--backpressure", "nan"}), "--backpressure: 'nan'");
+  EXPECT_PRED2(contains, parse_error({"bench", "--seconds", "inf"}), "--seconds: 'inf'");
+  EXPECT_PRED2(contains, parse_error({"size", "--max-error", "1e999"}), "--max-error: '1e999'");
+  // Options declared outside app/ are made strict too (area, scene options).
+  EXPECT_PRED2(contains, parse_error({"area", "--sram-cell-um2", "nan"}), "--sram-cell-um2: 'nan'");
+}
+
+TEST(CommandLine, RefusesZeroAndNegativeWhereTheyMeanNothing) {
+  EXPECT_PRED2(contains, parse_error({"size", "--max-error", "0"}), "--max-error: 0 is out of range: must be > 0");
+  EXPECT_PRED2(contains, parse_error({"size", "--max-error", "-1"}), "--max-error: -1 is out of range");
+  EXPECT_PRED2(contains, parse_error({"regress", "--random", "0"}), "--random: 0 is out of range: must be in [1, 10000000]");
+  EXPECT_PRED2(contains, parse_error({"regress", "--random", "-5"}), "--random: '-5' is negative");
+  EXPECT_PRED2(contains, parse_error({"regress", "--only", "-1"}), "--only: -1 is out of range");
+  EXPECT_PRED2(contains, parse_error({"sweep", "--jobs", "0"}), "--jobs: 0 is out of range");
+  EXPECT_PRED2(contains, parse_error({"render", "--checker", "0"}), "--checker: 0 is out of range");
+  EXPECT_PRED2(contains, parse_error({"bench", "--seconds", "0"}), "--seconds: 0 is out of range");
+  EXPECT_PRED2(contains, parse_error({"size", "--max-error", "1", "--verify", "--verify-backpressure", "1"}),
+               "--verify-backpressure: 1 is out of range: must be in [0, 0.95]");
+}
+
+TEST(CommandLine, SeedsAreAnyUint64AndNothingElse) {
+  const std::unique_ptr<cdsim::Cli> cli = cdsim::make_cli();
+  parse(*cli, {"regress", "--seed", "18446744073709551615"});
+  EXPECT_EQ(cli->regress.seed, std::numeric_limits<uint64_t>::max());
+  EXPECT_PRED2(contains, parse_error({"regress", "--seed", "18446744073709551616"}),
+               "--seed: 18446744073709551616 is out of range: must be in [0, 18446744073709551615]");
+  EXPECT_PRED2(contains, parse_error({"regress", "--seed", "-1"}), "--seed: '-1' is negative");
+  EXPECT_PRED2(contains, parse_error({"regress", "--seed", "0x10"}), "--seed: '0x10' is not a decimal integer");
+  EXPECT_PRED2(contains, parse_error({"regress", "--seed", "1e3"}), "--seed: '1e3' is not a decimal integer");
+}
+
+TEST(CommandLine, IntegersArePlainDecimal) {
+  // strtol's base 0, which CLI11 uses, would read 010 as 8.
+  EXPECT_PRED2(contains, parse_error({"render", "--checker", "010"}), "--checker: '010' is not a decimal integer");
+  EXPECT_PRED2(contains, parse_error({"run", "--spawn", "0x1"}), "--spawn: '0x1' is not a decimal integer");
+  EXPECT_PRED2(contains, parse_error({"run", "--spawn", " 5"}), "--spawn: ' 5' is not a decimal integer");
+  EXPECT_EQ(parse_error({"render", "--checker", "10"}), "");
+}
+
+TEST(CommandLine, RefusesASingleValuedOptionGivenTwice) {
+  EXPECT_PRED2(contains, parse_error({"run", "--json", "a.json", "--json", "b.json"}), "--json");
+  EXPECT_PRED2(contains, parse_error({"run", "--worst", "--worst"}), "--worst");
+  EXPECT_PRED2(contains, parse_error({"size", "--max-error", "1", "--max-error", "2"}), "--max-error");
+  EXPECT_PRED2(contains, parse_error({"regress", "--seed", "1", "--seed", "2"}), "--seed");
+  EXPECT_NE(parse_error({"sweep", "--out", "a", "--out", "b"}), "");
+}
+
+TEST(CommandLine, SetIsRepeatableButEachParameterOnce) {
+  const std::unique_ptr<cdsim::Cli> cli = cdsim::make_cli();
+  parse(*cli, {"run", "--set", "g_frac=8", "--set", "t_frac=10", "--set", "g_frac=12"});
+  ASSERT_EQ(cli->run.settings.size(), 3u);
+  EXPECT_PRED2(contains, what_of([&] { cdsim::widths_from(cli->run); }),
+               "--set g_frac=8 and --set g_frac=12 both set parameter g_frac");
+  EXPECT_PRED2(contains, what_of([] { cdsim::designs_from("cd-linear,divide,cd-linear"); }),
+               "design 'cd-linear' is listed twice");
+}
+
+TEST(CommandLine, RefusesOptionsThatWouldBeIgnored) {
+  EXPECT_PRED2(contains, parse_error({"regress", "--random", "5", "--scene", "hard:all"}), "excludes --random");
+  EXPECT_PRED2(contains, parse_error({"size", "--max-error", "1", "--verify-random", "5"}),
+               "--verify-random requires --verify");
+  EXPECT_PRED2(contains, parse_error({"run", "--json", ""}), "--json: the value is empty");
+}
+
+TEST(CommandLine, AcceptsWhatTheReadmeShows) {
+  EXPECT_EQ(parse_error({}), "");
+  EXPECT_EQ(parse_error({"regress", "--random", "10000", "--seed", "1", "--backpressure", "0.5"}), "");
+  EXPECT_EQ(parse_error({"size", "--max-error", "0.2", "--statistic", "p99", "--design", "cd-linear"}), "");
+  EXPECT_EQ(parse_error({"sweep", "--set", "g_frac=8:12:2", "--set", "kim_frac=2,6", "--jobs", "2", "--yes"}), "");
+  EXPECT_EQ(parse_error({"bench", "--seconds", "0.01"}), "");
+}
+
+TEST(SweepFile, AcceptsAByteOrderMarkAndWindowsLineEnds) {
+  std::istringstream in("\xEF\xBB\xBFg_frac=8:12:2\r\ndesign cd-linear\r\n");
+  const cdsim::SweepFile file = cdsim::parse_sweep_file(in, "t.sweep");
+  ASSERT_EQ(file.axes.size(), 1u);
+  EXPECT_EQ(file.axes[0].name, "g_frac");
+  EXPECT_EQ(file.axes[0].values, (std::vector<int>{8, 10, 12}));
+  EXPECT_EQ(file.designs, "cd-linear");
+  EXPECT_EQ(file.design_line, 2);
+}
+
+TEST(SweepFile, RefusesAParameterOrDesignLineTwiceNamingBothLines) {
+  EXPECT_EQ(sweep_file_error("g_frac=8\n# c\ns_frac=10\ng_frac=12\n"),
+            "t.sweep:4: parameter g_frac is swept twice (first at line 1)");
+  EXPECT_EQ(sweep_file_error("design cd-linear\ng_frac=8\ndesign divide\n"),
+            "t.sweep:3: a second 'design' line (the first is line 1)");
+  EXPECT_PRED2(contains, sweep_file_error("g_frac=8,10,8\n"), "t.sweep:1: ");
+  EXPECT_PRED2(contains, sweep_file_error("g_frac=8,10,8\n"), "the value 8 is listed twice");
+}
+
+TEST(SweepFile, NumbersAreStrictAndRangesCheckedBeforeExpanding) {
+  EXPECT_PRED2(contains, sweep_file_error("\n\ng_frac=8:1e1\n"), "t.sweep:3: ");
+  EXPECT_PRED2(contains, sweep_file_error("g_frac=8:1e1\n"), "'1e1' is not an integer");
+  EXPECT_PRED2(contains, sweep_file_error("g_frac=+8\n"), "'+8' is not an integer");
+  EXPECT_PRED2(contains, sweep_file_error("g_frac=0x8\n"), "'0x8' is not an integer");
+  EXPECT_PRED2(contains, sweep_file_error("g_frac=8:99999999999\n"), "99999999999 is out of range");
+  // A huge range is refused by its ends, not expanded first.
+  EXPECT_PRED2(contains, sweep_file_error("g_frac=2:2147483647\n"), "g_frac=2147483647 is out of range [2, 30]");
+  EXPECT_PRED2(contains, sweep_file_error("g_frac=12:8\n"), "t.sweep:1: sweep setting 'g_frac=12:8': HI is below LO");
+  EXPECT_PRED2(contains, sweep_file_error("g_frac=8:12:0\n"), "STEP must be positive");
+  EXPECT_PRED2(contains, sweep_file_error("design cd-cubic\n"), "t.sweep:1: unknown design 'cd-cubic'");
+  EXPECT_PRED2(contains, sweep_file_error("# only a comment\n"), "t.sweep:1: no parameter and no 'design' line");
+  EXPECT_PRED2(contains, sweep_file_error("g_frac\n"), "t.sweep:1: ");
+}
+
+TEST(SweepFile, SizeSaturatesInsteadOfOverflowing) {
+  std::vector<cdsim::SweepAxis> axes(20, cdsim::SweepAxis{"g_frac", std::vector<int>(29, 8)});
+  EXPECT_EQ(cdsim::sweep_size(11, axes), std::numeric_limits<uint64_t>::max());
+  EXPECT_EQ(cdsim::sweep_size(11, {axes[0], axes[1]}), 11u * 29 * 29);
+}
+
+TEST(OutputFiles, AtomicWriteReplacesWholeAndLeavesNoTemporary) {
+  const fs::path dir = fresh_folder("atomic");
+  cdsim::write_file_atomic(dir / "a.txt", "old\n");
+  cdsim::write_file_atomic(dir / "a.txt", "new\n");
+  EXPECT_EQ(cdsim::read_text_file(dir / "a.txt"), "new\n");
+  EXPECT_EQ(files_in(dir), 1u);
+  fs::remove_all(dir);
+}
+
+TEST(OutputFiles, FailedWritesNameThePathAndTheReason) {
+  const fs::path dir = fresh_folder("fail");
+  EXPECT_PRED2(contains, what_of([&] { cdsim::write_file_atomic(dir / "missing" / "a.txt", "x"); }),
+               (dir / "missing").string() + " does not exist");
+  EXPECT_PRED2(contains, what_of([] { cdsim::write_file_atomic("/dev/full", "x"); }),
+               "/dev/full: cannot write: No space left on device");
+  EXPECT_PRED2(contains, what_of([&] { cdsim::write_file_atomic(dir, "x"); }), "Is a directory");
+  EXPECT_EQ(files_in(dir), 0u);
+  fs::remove_all(dir);
+}
+
+TEST(OutputFiles, SeveralFilesAreAllWrittenOrNoneChanged) {
+  const fs::path dir = fresh_folder("several");
+  cdsim::write_file_atomic(dir / "sweep.csv", "old csv\n");
+  EXPECT_NE(what_of([&] {
+              cdsim::write_files_atomic({{dir / "sweep.csv", "new csv\n"}, {dir / "no" / "sweep.json", "{}"}});
+            }),
+            "");
+  EXPECT_EQ(cdsim::read_text_file(dir / "sweep.csv"), "old csv\n");
+  EXPECT_EQ(files_in(dir), 1u);  // no temporary left behind
+  fs::remove_all(dir);
+}
+
+TEST(OutputFiles, AFolderTakesOneRunAtATime) {
+  const fs::path dir = fresh_folder("lock");
+  {
+    const cdsim::OutputFolderLock first(dir);
+    EXPECT_PRED2(contains, what_of([&] { cdsim::OutputFolderLock second(dir); }),
+                 dir.string() + ": another cdsim run is writing into this folder");
+  }
+  EXPECT_EQ(what_of([&] { cdsim::OutputFolderLock again(dir); }), "");
+  fs::remove_all(dir);
+}
+
+TEST(Interrupt, SigintSetsTheFlagAndThrowsWithStatus130) {
+  EXPECT_EXIT(
+      {
+        cdsim::install_interrupt_handlers();
+        const bool before = cdsim::interrupted();
+        std::raise(SIGINT);
+        int status = 0;
+        try {
+          cdsim::throw_if_interrupted();
+        } catch (const cdsim::Interrupted& e) {
+          status = e.exit_status();
+        }
+        std::exit(!before && cdsim::interrupted() && status == 130 ? 0 : 1);
+      },
+      ::testing::ExitedWithCode(0), "");
+}
+
+TEST(Interrupt, ASecondSignalKillsAtOnce) {
+  EXPECT_EXIT(
+      {
+        cdsim::install_interrupt_handlers();
+        std::raise(SIGTERM);
+        std::raise(SIGTERM);
+        std::exit(0);
+      },
+      ::testing::KilledBySignal(SIGTERM), "");
+}
+
+TEST(RegressHangLimit, ScalesWithTheModelsCyclesAndTheBackPressure) {
+  EXPECT_EQ(cdsim::rtl::hang_cycle_limit(100, 10, 0.0), 4 * 100 + 1000);
+  // 720,000 pixels at p = 0.95 stall about 13.7 M cycles: the limit is well above.
+  const int64_t cycles = 800'000, pixels = 720'000;
+  const double mean = double(cycles) + double(pixels) * 0.95 / 0.05;
+  EXPECT_GT(double(cdsim::rtl::hang_cycle_limit(cycles, pixels, 0.95)), 3 * mean);
+  EXPECT_GT(cdsim::rtl::hang_cycle_limit(2 * cycles, 2 * pixels, 0.5),
+            cdsim::rtl::hang_cycle_limit(cycles, pixels, 0.5));
+}
