@@ -25,7 +25,7 @@ namespace fs = std::filesystem;
 namespace {
 
 // Bumped whenever the flow below changes, so that cached results are redone.
-constexpr const char* kFlowVersion = "area-flow-2";
+constexpr const char* kFlowVersion = "area-flow-3";
 
 int log2_of(int value) {
   int bits = 0;
@@ -117,6 +117,13 @@ std::string find_module(const std::map<std::string, ModuleStat>& modules, const 
   throw std::runtime_error(fmt::format("yosys statistics list no module '{}'", base));
 }
 
+// The module's subtree, or nothing when the design does not have it.
+Subtree subtree_of(const std::map<std::string, ModuleStat>& modules, const std::string& base) {
+  for (const auto& [name, stat] : modules)
+    if (base_name(name) == base) return subtree(modules, name);
+  return {};
+}
+
 double liberty_cell_area(const std::string& liberty, const std::string& cell) {
   const std::string text = read_text_file(liberty);
   const std::regex pattern("cell \\(" + cell + "\\) \\{\\s*area : ([0-9.]+)");
@@ -144,18 +151,26 @@ std::string yosys_error(const fs::path& log) {
 }  // namespace
 
 AreaReport synthesise_area(const Design& design, const Widths& widths, const AreaOptions& options) {
-  if (design.kind != Design::Kind::ConstantDepth)
+  if (!has_rtl(design))
     throw std::invalid_argument(fmt::format(
-        "design '{}' has no RTL yet; cdsim area synthesises cd-none, cd-linear, cd-dense2, "
-        "cd-dense4 and cd-dense2-linear",
-        design.name));
+        "design '{}' has no RTL yet; cdsim area synthesises {}", design.name, rtl_design_names()));
   validate(widths);
   if (!fs::exists(options.liberty))
     throw std::runtime_error(fmt::format(
         "{}: no such liberty file (scripts/setup installs qflow-tech-osu018)", options.liberty));
   const DerivedWidths derived = derive(widths);
+  // The unit elaborated with this design's hardware only (rtl/cd_scan_unit.sv).
+  const bool has_table = design.kind == Design::Kind::ConstantDepth;
+  const bool has_divide = design.kind == Design::Kind::Divide;
+  const bool has_affine = design.kind == Design::Kind::Affine && design.subdivision == 0;
+  const bool has_affine_sub = design.kind == Design::Kind::Affine && design.subdivision != 0;
+  const int segment_log2 = has_affine_sub ? log2_of(design.subdivision) : 4;
   const int density_log2 = log2_of(design.density);
   const int has_correction = design.correction ? 1 : 0;
+  const std::string parameters = fmt::format(
+      "-set MaxDensityLog2 {} -set HasCorrection {} -set HasTable {:d} -set HasDivide {:d} "
+      "-set HasAffine {:d} -set HasAffineSub {:d} -set MaxSegmentLog2 {} -set HasObservation 0",
+      density_log2, has_correction, has_table, has_divide, has_affine, has_affine_sub, segment_log2);
 
   // Every RTL source, in name order, so that the hash is stable.
   const fs::path rtl_dir = kRtlDir;
@@ -166,7 +181,7 @@ AreaReport synthesise_area(const Design& design, const Widths& widths, const Are
   const std::string header = rtl_header(widths, "area");
   uint64_t hash = fnv1a(kFlowVersion);
   hash = fnv1a(header, hash);
-  hash = fnv1a(fmt::format("{} {} {}", density_log2, has_correction, options.liberty), hash);
+  hash = fnv1a(fmt::format("{} {}", parameters, options.liberty), hash);
   for (const fs::path& source : sources) hash = fnv1a(read_text_file(source), hash);
 
   const fs::path cache = options.cache_dir.empty() ? cache_root("area") : fs::path(options.cache_dir);
@@ -178,7 +193,7 @@ AreaReport synthesise_area(const Design& design, const Widths& widths, const Are
   report.design = design.name;
   report.widths = widths;
   report.log_path = (dir / "unit.log").string();
-  const int64_t sram_depth = int64_t{widths.table_depth} << density_log2;
+  const int64_t sram_depth = has_table ? int64_t{widths.table_depth} << density_log2 : 0;
   report.sram_bits = sram_depth * derived.word_bits;
   report.sram_area_um2 =
       static_cast<double>(report.sram_bits) * options.sram_cell_um2 / options.sram_efficiency;
@@ -199,7 +214,7 @@ AreaReport synthesise_area(const Design& design, const Widths& widths, const Are
     write_file_atomic(dir / "unit.ys", fmt::format(
         "read_verilog -sv -DSYNTHESIS {inc}{src}\n"
         "read_verilog -sv -lib {inc} {rtl}/scanline_table.sv\n"
-        "chparam -set MaxDensityLog2 {m} -set HasCorrection {c} cd_scan_unit\n"
+        "chparam {p} cd_scan_unit\n"
         "hierarchy -check -top cd_scan_unit\n"
         "proc\n"
         "select -assert-none t:$dlatch t:$adlatch t:$dlatchsr t:$sr\n"
@@ -210,9 +225,9 @@ AreaReport synthesise_area(const Design& design, const Widths& widths, const Are
         "select -assert-none t:$* t:$paramod* %d\n"
         "stat -liberty {L}\n",
         fmt::arg("inc", include), fmt::arg("src", unit_sources), fmt::arg("rtl", rtl_dir.string()),
-        fmt::arg("m", density_log2), fmt::arg("c", has_correction), fmt::arg("L", L)));
+        fmt::arg("p", parameters), fmt::arg("L", L)));
     // The same table from flip-flops, synthesised at up to 64 lines.
-    const int64_t flop_lines = std::min<int64_t>(sram_depth, 64);
+    const int64_t flop_lines = std::min<int64_t>(sram_depth, 64);  // 0: no table
     write_file_atomic(dir / "table.ys", fmt::format(
         "read_verilog -sv {inc} {rtl}/scanline_table.sv\n"
         "chparam -set Depth {d} -set WordBits {w} scanline_table\n"
@@ -228,7 +243,9 @@ AreaReport synthesise_area(const Design& design, const Widths& widths, const Are
                              fs::path(L).filename().string(), report.log_path);
     const auto start = std::chrono::steady_clock::now();
     int unit_status = 0, table_status = 0;
-    std::thread table([&] { table_status = run_yosys(dir / "table.ys", dir / "table.log"); });
+    std::thread table([&] {
+      if (has_table) table_status = run_yosys(dir / "table.ys", dir / "table.log");
+    });
     unit_status = run_yosys(dir / "unit.ys", dir / "unit.log");
     table.join();
     const double seconds =
@@ -241,26 +258,56 @@ AreaReport synthesise_area(const Design& design, const Widths& widths, const Are
                                            yosys_error(dir / "table.log"), (dir / "table.log").string()));
 
     const auto unit = parse_stat(read_text_file(dir / "unit.log"));
-    const auto flop_table = parse_stat(read_text_file(dir / "table.log"));
+    // Blocks: the top's submodules by kind (the table is a black box), each
+    // reciprocal counted apart from the block that holds it, and the top's
+    // own cells as control. They sum to the unit's logic.
     const std::string top = find_module(unit, "cd_scan_unit");
-    const std::string setup = find_module(unit, "setup_engine");
-    const std::string recip = find_module(unit, "reciprocal");
-    const Subtree setup_tree = subtree(unit, setup), recip_tree = subtree(unit, recip);
-    const Subtree walker = subtree(unit, find_module(unit, "column_walker"));
-    const Subtree adder = subtree(unit, find_module(unit, "correction_adder"));
+    const Subtree recip = subtree_of(unit, "reciprocal");  // one per design: fill or pixels
+    static const std::map<std::string, std::string> block_of = {
+        {"setup_engine", "setup engine"},     {"column_walker", "column walker"},
+        {"correction_adder", "correction adder"}, {"plane_accumulator", "plane accumulators"},
+        {"pixel_divide", "pixel multiply"},   {"affine_setup", "affine setup"},
+        {"shift_round", "output rounding"},   {"affine_sub_datapath", "subdivision datapath"}};
+    std::vector<std::string> order;
+    std::map<std::string, Subtree> totals;
+    const auto add = [&](const std::string& name, double area, int64_t flops) {
+      if (!totals.count(name)) order.push_back(name);
+      totals[name].area += area;
+      totals[name].flops += flops;
+    };
+    for (const auto& [sub, count] : unit.at(top).submodules) {
+      const std::string base = base_name(sub);
+      if (base == "scanline_table") continue;
+      const auto it = block_of.find(base);
+      if (it == block_of.end())
+        throw std::runtime_error(fmt::format("area: no block for module '{}' in {}", base, report.log_path));
+      Subtree t = subtree(unit, sub);
+      // The reciprocal, reported on its own, is the fill's (in the setup engine)
+      // in the table designs, the pixels' (in pixel_divide) in divide and the
+      // end points' in affine-subN.
+      if ((base == "setup_engine" && has_table) || base == "pixel_divide" ||
+          base == "affine_sub_datapath") {
+        t.area -= recip.area;
+        t.flops -= recip.flops;
+      }
+      add(it->second, static_cast<double>(count) * t.area, count * t.flops);
+    }
+    add("reciprocal", recip.area, recip.flops);
     const auto& control = unit.at(top);
-    const Subtree table_tree = subtree(flop_table, find_module(flop_table, "scanline_table"));
+    add("control", control.own_area, control.own_flops);
+    nlohmann::json blocks = nlohmann::json::array();
+    for (const std::string& name : order)
+      blocks.push_back({{"name", name}, {"area_um2", totals[name].area}, {"flops", totals[name].flops}});
+    double table_area = 0;
+    if (has_table) {
+      const auto flop_table = parse_stat(read_text_file(dir / "table.log"));
+      table_area = subtree(flop_table, find_module(flop_table, "scanline_table")).area;
+    }
     synthesised = {
         {"seconds", seconds},
-        {"blocks",
-         {{{"name", "setup engine"}, {"area_um2", setup_tree.area - recip_tree.area},
-           {"flops", setup_tree.flops - recip_tree.flops}},
-          {{"name", "reciprocal"}, {"area_um2", recip_tree.area}, {"flops", recip_tree.flops}},
-          {{"name", "column walker"}, {"area_um2", walker.area}, {"flops", walker.flops}},
-          {{"name", "correction adder"}, {"area_um2", adder.area}, {"flops", adder.flops}},
-          {{"name", "control"}, {"area_um2", control.own_area}, {"flops", control.own_flops}}}},
+        {"blocks", blocks},
         {"flop_table_lines", flop_lines},
-        {"flop_table_area_um2", table_tree.area},
+        {"flop_table_area_um2", table_area},
     };
     write_file_atomic(result_path, synthesised.dump(2) + "\n");
   }
@@ -275,9 +322,10 @@ AreaReport synthesise_area(const Design& design, const Widths& widths, const Are
     report.blocks.push_back(block);
   }
   report.flop_table_lines_synthesised = synthesised.at("flop_table_lines").get<int64_t>();
-  report.flop_table_area_um2 = synthesised.at("flop_table_area_um2").get<double>() *
-                               static_cast<double>(sram_depth) /
-                               static_cast<double>(report.flop_table_lines_synthesised);
+  if (report.flop_table_lines_synthesised > 0)
+    report.flop_table_area_um2 = synthesised.at("flop_table_area_um2").get<double>() *
+                                 static_cast<double>(sram_depth) /
+                                 static_cast<double>(report.flop_table_lines_synthesised);
   report.total_area_um2 = report.logic_area_um2 + report.sram_area_um2;
   return report;
 }
@@ -307,7 +355,7 @@ nlohmann::json area_json(const AreaReport& r, const AreaOptions& options) {
 CLI::App* add_area_command(CLI::App& app, AreaOptions& options) {
   CLI::App* cmd = app.add_subcommand(
       "area", "synthesise the unit with Yosys onto osu018 cells: area per block, table as SRAM");
-  cmd->add_option("--design", options.design, "constant-depth design to synthesise")
+  cmd->add_option("--design", options.design, "design to synthesise (one with RTL: cdsim designs)")
       ->capture_default_str();
   cmd->add_option("--set", options.settings, "NAME=VALUE width or parameter (cdsim widths)");
   cmd->add_option("--json", options.json_path, "also write the report as JSON to this file");
@@ -337,16 +385,20 @@ int run_area_command(const AreaOptions& options) {
   for (const BlockArea& b : r.blocks)
     fmt::print("{:<18} {:>14.0f} {:>11.0f} {:>8}\n", b.name, b.area_um2, b.nand2_eq, b.flops);
   fmt::print("{:<18} {:>14.0f}\n", "logic total", r.logic_area_um2);
-  fmt::print("\nscanline table: {} bits ({} lines x {} bits, flags included)\n", r.sram_bits,
-             r.sram_bits / derive(r.widths).word_bits, derive(r.widths).word_bits);
-  fmt::print("  as SRAM:        {:>14.0f} um^2 ({} um^2 bit cell / {} array efficiency)\n",
-             r.sram_area_um2, options.sram_cell_um2, options.sram_efficiency);
-  fmt::print("  as flip-flops:  {:>14.0f} um^2 (synthesised at {} lines{})\n", r.flop_table_area_um2,
-             r.flop_table_lines_synthesised,
-             r.flop_table_lines_synthesised * derive(r.widths).word_bits == r.sram_bits
-                 ? ""
-                 : ", scaled linearly to the full depth");
-  fmt::print("total (logic + SRAM table): {:.0f} um^2\n", r.total_area_um2);
+  if (r.sram_bits == 0) {
+    fmt::print("\nno scanline table\ntotal (logic): {:.0f} um^2\n", r.total_area_um2);
+  } else {
+    fmt::print("\nscanline table: {} bits ({} lines x {} bits, flags included)\n", r.sram_bits,
+               r.sram_bits / derive(r.widths).word_bits, derive(r.widths).word_bits);
+    fmt::print("  as SRAM:        {:>14.0f} um^2 ({} um^2 bit cell / {} array efficiency)\n",
+               r.sram_area_um2, options.sram_cell_um2, options.sram_efficiency);
+    fmt::print("  as flip-flops:  {:>14.0f} um^2 (synthesised at {} lines{})\n", r.flop_table_area_um2,
+               r.flop_table_lines_synthesised,
+               r.flop_table_lines_synthesised * derive(r.widths).word_bits == r.sram_bits
+                   ? ""
+                   : ", scaled linearly to the full depth");
+    fmt::print("total (logic + SRAM table): {:.0f} um^2\n", r.total_area_um2);
+  }
   if (!options.json_path.empty()) {
     write_file_atomic(options.json_path, area_json(r, options).dump(2) + "\n");
     fmt::print("wrote {}\n", options.json_path);

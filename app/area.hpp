@@ -25,7 +25,7 @@ struct BlockArea {
 struct AreaReport {
   std::string design;
   Widths widths;
-  std::vector<BlockArea> blocks;  // setup engine, reciprocal, column walker, correction adder, control
+  std::vector<BlockArea> blocks;  // the blocks present in this design, then control
   double logic_area_um2 = 0;
   int64_t sram_bits = 0;
   double sram_area_um2 = 0;

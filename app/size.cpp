@@ -94,10 +94,10 @@ int run_size_command(const SizeOptions& options) {
   const Design design = designs.front();
   if (options.metric == "footprint" && options.statistic != "max")
     throw std::invalid_argument("the footprint metric is kept as a maximum only: use --statistic max");
-  if (options.verify && design.kind != Design::Kind::ConstantDepth)
+  if (options.verify && !has_rtl(design))
     throw std::invalid_argument(fmt::format(
-        "--verify: design '{}' has no RTL; the RTL implements cd-none, cd-linear, cd-dense2, "
-        "cd-dense4, cd-dense2-linear", design.name));
+        "--verify: design '{}' has no RTL yet; the RTL implements {}", design.name,
+        rtl_design_names()));
   const PreparedScene scene = prepared_scene(options.common, user);
   std::cout << provenance(scene.scene, user);
   fmt::print("sizing {} for {} {} error <= {}\n\n", design.name, options.statistic, options.metric,

@@ -68,6 +68,9 @@ DerivedWidths derive(const Widths& w) {
   // Lines reach k = +-2^16 from the reference: one more offset of 2^(diff - 1).
   d.fill_q_bits = d.plane_ref_q_bits + 2;
   d.fill_uv_bits = d.plane_ref_uv_bits + 2;
+  // A pixel of the box lies inside the lines' reach, so the fill's bound holds.
+  d.pixel_q_bits = d.fill_q_bits;
+  d.pixel_uv_bits = d.fill_uv_bits;
   d.exponent_bits = bits_for_unsigned(d.fill_q_bits - 1);
   d.t_bits = w.t_int + w.t_frac;
   d.s_bits = w.s_int + w.s_frac;
@@ -87,6 +90,12 @@ DerivedWidths derive(const Widths& w) {
       std::max({d.g_div_quotient_bits, d.bound_div_quotient_bits, d.slope_div_quotient_bits}),
       w.div_bits_per_cycle);
   d.setup_cycles = 4 + d.div_cycles;
+  // affine's planes of u and v: a value at a pixel is the reference plus up to
+  // 2^13 steps along each axis; its dividers (t_bits or s_bits quotients) resolve
+  // enough bits a cycle to finish with the others (at most 58 / 5 = 12).
+  d.affine_ref_bits = w.t_int + w.s_frac;
+  d.affine_acc_bits = std::max(d.affine_ref_bits, d.s_bits + 14) + 2;
+  d.affine_div_bits_per_cycle = ceil_div_int(std::max(d.affine_ref_bits, d.s_bits), d.div_cycles);
   d.cycle_count_bits = 32;
   return d;
 }

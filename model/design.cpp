@@ -26,6 +26,23 @@ const std::vector<Design>& all_designs() {
   return designs;
 }
 
+bool has_rtl(const Design& design) {
+  switch (design.kind) {
+    case Design::Kind::ConstantDepth:
+    case Design::Kind::Divide: return true;
+    case Design::Kind::Affine: return true;
+    case Design::Kind::Kim: return false;
+  }
+  return false;
+}
+
+std::string rtl_design_names() {
+  std::string names;
+  for (const auto& d : all_designs())
+    if (has_rtl(d)) names += (names.empty() ? "" : ", ") + d.name;
+  return names;
+}
+
 const Design& find_design(const std::string& name) {
   for (const auto& d : all_designs())
     if (d.name == name) return d;

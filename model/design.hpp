@@ -8,7 +8,8 @@
 namespace cdsim {
 
 struct Design {
-  enum class Kind { ConstantDepth, Divide, Kim, Affine };
+  // The values are the RTL's kind_i (rtl/cd_scan_unit.sv).
+  enum class Kind { ConstantDepth = 0, Divide = 1, Kim = 2, Affine = 3 };
   std::string name;
   Kind kind = Kind::ConstantDepth;
   int density = 1;          // constant-depth lines per pixel (method 1: 2, 4)
@@ -19,6 +20,10 @@ struct Design {
 };
 
 const std::vector<Design>& all_designs();
+// Whether rtl/ implements the design (regress and area refuse the others).
+bool has_rtl(const Design& design);
+// The names of the designs with RTL, for messages: "cd-none, cd-linear, ...".
+std::string rtl_design_names();
 // Throws std::invalid_argument listing the known names.
 const Design& find_design(const std::string& name);
 // "a,b,c" -> designs; empty text -> all.

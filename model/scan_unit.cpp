@@ -179,9 +179,11 @@ TriangleRecord ScanUnit::run_affine(const UnitTriangle& triangle, const Setup& s
       record.pixels += length;
       continue;
     }
-    // Subdivided: the span waits for its first two end points from the
-    // pipelined divider; later end points are issued a segment ahead, so a
-    // segment shorter than the divider's latency stalls for the difference.
+    // Subdivided: the span waits recip_latency cycles for its first two end
+    // points (issued in the column cycle and the next); each later end point is
+    // issued as the segment before its own starts, so a segment after the
+    // first waits max(0, recip_latency - N) cycles for its end point
+    // (rtl/affine_sub_datapath.sv).
     record.walk_cycles += widths_.recip_latency;
     const auto exact_at = [&](int64_t minor) {
       return divide_uv(s, offset, minor - s.minor_lo, widths_, exact_format, &record.flags);
@@ -190,7 +192,7 @@ TriangleRecord ScanUnit::run_affine(const UnitTriangle& triangle, const Setup& s
     for (int64_t first = c.span.lo; first <= c.span.hi; first += segment) {
       const int64_t last = std::min(first + segment, c.span.hi);
       const int64_t run = last - first;  // pixels from first to last end point
-      if (first != c.span.lo) record.walk_cycles += std::max<int64_t>(0, widths_.recip_latency - run);
+      if (first != c.span.lo) record.walk_cycles += std::max<int64_t>(0, widths_.recip_latency - segment);
       const CorrectedValue end = run > 0 ? exact_at(last) : start;
       // Pixels first .. last-1 (and the span's final pixel itself).
       const int64_t stop = last == c.span.hi ? last : last - 1;

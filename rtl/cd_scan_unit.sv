@@ -1,14 +1,22 @@
-// Constant-depth scan unit: setup engine, scanline table, column walker and
-// correction adder behind a ready/valid triangle input, a ready/valid fragment
-// output and a ready/valid per-triangle record. The design (density m and
-// correction on/off) is chosen per triangle by density_log2_i and correction_i.
+// Scan unit: setup engine, column walker and a per-pixel datapath behind a
+// ready/valid triangle input, a ready/valid fragment output and a ready/valid
+// per-triangle record. The datapaths are the constant-depth designs
+// (scanline table and correction adder; density m and correction on/off) and
+// the per-pixel designs (docs/designs.md), each present by parameter, so that
+// a unit synthesised for one design holds only that design's hardware. The
+// design is chosen per triangle by kind_i (when more than one is present),
+// density_log2_i and correction_i.
 //
 // Cycles of a triangle (docs/rtl.md): one per cycle spent in SETUP, FILL,
 // COLUMN, PIXEL or SCAN (an empty walk), from the cycle after the triangle is
 // accepted to the cycle before its record is offered. Without back-pressure
 // that is the model's count exactly: SetupCycles (CD_SETUP_CYCLES) + per band (lines +
 // recip_latency) + per band (columns) + pixels. A PIXEL cycle whose fragment
-// is not taken is a stall and is counted too.
+// is not taken is a stall and is counted too. divide issues one pixel per
+// PIXEL cycle into its pipeline and then DRAINs it: SetupCycles + columns +
+// pixels + recip_latency; a fragment not taken stalls the whole unit for that
+// cycle, which is counted. affine emits from its plane accumulators in PIXEL
+// cycles: SetupCycles + columns + pixels.
 `include "cd_widths.svh"
 `default_nettype none
 
@@ -18,7 +26,20 @@ module cd_scan_unit #(
   parameter int MaxDensityLog2 = 2,
   // 0 builds the unit without the linear correction (cd-none, cd-dense2,
   // cd-dense4): no neighbour read, no correction multiplies, no guard lines.
-  parameter bit HasCorrection = 1'b1
+  parameter bit HasCorrection = 1'b1,
+  // The datapaths present: the constant-depth designs (table, fill,
+  // correction adder) and divide (plane walker, pixel reciprocal pipeline).
+  parameter bit HasTable = 1'b1,
+  parameter bit HasDivide = 1'b1,
+  // affine: its setup (planes of u and v by six serial dividers) and two
+  // plane accumulators.
+  parameter bit HasAffine = 1'b1,
+  // affine-subN: exact end points every N pixels (rtl/affine_sub_datapath.sv),
+  // N up to 2^MaxSegmentLog2.
+  parameter bit HasAffineSub = 1'b1,
+  parameter int MaxSegmentLog2 = 4,
+  // The obs_* ports, for the scoreboard; synthesis turns them off.
+  parameter bit HasObservation = 1'b1
 ) (
   input  logic        clk_i,
   input  logic        rst_ni,
@@ -47,6 +68,8 @@ module cd_scan_unit #(
   input  logic [15:0] viewport_width_i,
   input  logic [15:0] viewport_height_i,
   /* verilator lint_on UNUSEDSIGNAL */
+  input  logic [1:0]  kind_i,             // 0 constant depth, 1 divide, 3 affine (model/design.hpp)
+  input  logic [2:0]  segment_log2_i,     // affine: 0 plain, else subdivided every 2^segment_log2_i pixels
   input  logic [1:0]  density_log2_i,     // m = 1, 2, 4
   input  logic        correction_i,
 
@@ -113,9 +136,23 @@ module cd_scan_unit #(
   localparam logic [2:0] StPixel  = 3'd4;
   localparam logic [2:0] StScan   = 3'd5;  // columns walked with no possible line
   localparam logic [2:0] StRecord = 3'd6;
+  localparam logic [2:0] StDrain  = 3'd7;  // per-pixel designs: the pipeline empties
+
+  localparam logic [1:0] KindDivide = 2'd1;  // kind_i: 0 is constant depth
+  localparam logic [1:0] KindAffine = 2'd3;
+  localparam int Datapaths = (HasTable ? 1 : 0) + (HasDivide ? 1 : 0) + (HasAffine ? 1 : 0) +
+                             (HasAffineSub ? 1 : 0);
+  if (Datapaths == 0) begin : gen_no_datapath
+    $error("cd_scan_unit needs at least one datapath (HasTable, HasDivide, HasAffine, HasAffineSub)");
+  end
 
   logic [2:0]  state_d, state_q;
   logic [StepCountBits-1:0] count_d, count_q;   // setup / fill / scan cycle within the state
+  logic [1:0]  kind_d, kind_q;
+  logic        mode_divide, mode_affine, mode_sub;  // this triangle's datapath, when not the table
+  logic [2:0]  segment_log2_d, segment_log2_q;
+  logic        per_pixel;                        // a per-pixel design: no fill, no band clip
+  logic        stall;                            // a divide fragment offered and not taken
   logic [1:0]  density_log2_d, density_log2_q;
   logic        correction_d, correction_q;
   logic signed [LineBits-1:0] band_lo_d, band_lo_q, band_hi_d, band_hi_q;
@@ -145,9 +182,14 @@ module cd_scan_unit #(
   logic               write_valid;
   logic [AddrBits-1:0] write_addr;
   logic [WordBits-1:0] write_entry;
+  logic signed [`CD_PLANE_REF_Q_BITS-1:0]   q_at_ref;
+  logic signed [`CD_PLANE_REF_UV_BITS-1:0]  u_at_ref, v_at_ref;
+  logic signed [`CD_PLANE_STEP_Q_BITS-1:0]  q_per_major, q_per_minor;
+  logic signed [`CD_PLANE_STEP_UV_BITS-1:0] u_per_major, v_per_major, u_per_minor, v_per_minor;
 
   setup_engine #(
-    .SramDepth(SramDepth)
+    .HasLines(HasTable), .HasPixelPlanes(HasDivide || HasAffineSub),
+    .HasPlanes(HasTable || HasDivide || HasAffineSub), .SramDepth(SramDepth)
   ) u_setup_engine (
     .clk_i,
     .rst_ni,
@@ -174,6 +216,24 @@ module cd_scan_unit #(
     .pixel_line_lo_o   (pixel_line_lo),
     .pixel_line_hi_o   (pixel_line_hi),
     .flags_o           (setup_flags),
+    .q_at_ref_o        (q_at_ref),
+    .u_at_ref_o        (u_at_ref),
+    .v_at_ref_o        (v_at_ref),
+    .q_per_major_o     (q_per_major),
+    .u_per_major_o     (u_per_major),
+    .v_per_major_o     (v_per_major),
+    .q_per_minor_o     (q_per_minor),
+    .u_per_minor_o     (u_per_minor),
+    .v_per_minor_o     (v_per_minor),
+    .u_vertex_o        (u_vertex),
+    .v_vertex_o        (v_vertex),
+    .dx1_o             (geometry_dx1),
+    .dy1_o             (geometry_dy1),
+    .dx2_o             (geometry_dx2),
+    .dy2_o             (geometry_dy2),
+    .det_o             (geometry_det),
+    .ref_x_o           (geometry_ref_x),
+    .ref_y_o           (geometry_ref_y),
     .edge_kind_o       (edge_kind),
     .edge_bound_o      (edge_bound),
     .edge_rem_o        (edge_rem),
@@ -195,7 +255,9 @@ module cd_scan_unit #(
   logic signed [1:0]  column_direction;
   logic               column_has_pixels;
 
-  column_walker u_column_walker (
+  column_walker #(
+    .HasLines(HasTable)
+  ) u_column_walker (
     .clk_i,
     .rst_ni,
     .active_i          (state_q == StColumn),
@@ -213,6 +275,7 @@ module cd_scan_unit #(
     .edge_step_i       (edge_step),
     .edge_slope_i      (edge_slope),
     .edge_slope_rem_i  (edge_slope_rem),
+    .clip_band_i       (!per_pixel),
     .band_lo_i         (band_lo_q),
     .band_hi_i         (band_hi_q),
     .major_o           (column_major),
@@ -227,39 +290,265 @@ module cd_scan_unit #(
   logic                read;
   logic                neighbour_read;
   logic [AddrBits-1:0] own_addr, neighbour_addr;
-  logic [WordBits-1:0] own_entry, neighbour_entry;
+  logic signed [OutBits-1:0] table_u, table_v;
+  logic [7:0]          table_flags;
 
-  scanline_table #(
-    .Depth(SramDepth), .WordBits(WordBits)
-  ) u_scanline_table (
-    .clk_i,
-    .write_i           (write_valid),
-    .write_addr_i      (write_addr),
-    .write_entry_i     (write_entry),
-    .read_i            (read),
-    .own_addr_i        (own_addr),
-    .neighbour_read_i  (neighbour_read),
-    .neighbour_addr_i  (neighbour_addr),
-    .own_entry_o       (own_entry),
-    .neighbour_entry_o (neighbour_entry)
-  );
+  if (HasTable) begin : gen_table
+    logic [WordBits-1:0] own_entry, neighbour_entry;
+
+    scanline_table #(
+      .Depth(SramDepth), .WordBits(WordBits)
+    ) u_scanline_table (
+      .clk_i,
+      .write_i           (write_valid),
+      .write_addr_i      (write_addr),
+      .write_entry_i     (write_entry),
+      .read_i            (read),
+      .own_addr_i        (own_addr),
+      .neighbour_read_i  (neighbour_read),
+      .neighbour_addr_i  (neighbour_addr),
+      .own_entry_o       (own_entry),
+      .neighbour_entry_o (neighbour_entry)
+    );
+
+    correction_adder #(
+      .HasCorrection(HasCorrection)
+    ) u_correction_adder (
+      .valid_i           (state_q == StPixel && !per_pixel),
+      .own_entry_i       (own_entry),
+      .neighbour_entry_i (neighbour_entry),
+      .correct_i         (correction_q && direction_q != 2'sd0),
+      .offset_i          (offset_q),
+      .weight_i          (weight_q),
+      .u_o               (table_u),
+      .v_o               (table_v),
+      .flags_o           (table_flags)
+    );
+  end else begin : gen_no_table
+    logic unused_table_addr;
+    assign unused_table_addr = ^{own_addr, neighbour_addr};
+    assign table_u = '0;
+    assign table_v = '0;
+    assign table_flags = '0;
+  end
+
+  // Per-pixel designs: the plane walker feeds the pixel pipeline, which a
+  // stall (a fragment offered and not taken) holds together with the walk.
+  logic               plane_start, plane_step, pixel_issue;
+  logic               pipe_valid, pipe_saturated, pipe_depth_out;
+  logic signed [OutBits-1:0] pipe_u, pipe_v;
+  logic [2*PixelBits-1:0] pipe_tag;
+
+  // start_value_o is only affine-subN's (its end points start there).
+  /* verilator lint_off PINCONNECTEMPTY */
+  if (HasDivide) begin : gen_divide
+    logic signed [`CD_PIXEL_Q_BITS-1:0]  pixel_q;
+    logic signed [`CD_PIXEL_UV_BITS-1:0] pixel_u, pixel_v;
+
+    plane_accumulator #(
+      .RefBits(`CD_PLANE_REF_Q_BITS), .StepBits(`CD_PLANE_STEP_Q_BITS), .AccBits(`CD_PIXEL_Q_BITS)
+    ) u_plane_q (
+      .clk_i, .init_i(column_init && mode_divide), .advance_i(column_advance && mode_divide),
+      .start_i(plane_start && mode_divide), .step_i(plane_step && mode_divide),
+      .first_offset_i(column_first - minor_lo), .jump_i(1'b0), .start_value_o(), .next_value_o(),
+      .at_ref_i(q_at_ref), .per_major_i(q_per_major), .per_minor_i(q_per_minor), .value_o(pixel_q)
+    );
+    plane_accumulator #(
+      .RefBits(`CD_PLANE_REF_UV_BITS), .StepBits(`CD_PLANE_STEP_UV_BITS), .AccBits(`CD_PIXEL_UV_BITS)
+    ) u_plane_u (
+      .clk_i, .init_i(column_init && mode_divide), .advance_i(column_advance && mode_divide),
+      .start_i(plane_start && mode_divide), .step_i(plane_step && mode_divide),
+      .first_offset_i(column_first - minor_lo), .jump_i(1'b0), .start_value_o(), .next_value_o(),
+      .at_ref_i(u_at_ref), .per_major_i(u_per_major), .per_minor_i(u_per_minor), .value_o(pixel_u)
+    );
+    plane_accumulator #(
+      .RefBits(`CD_PLANE_REF_UV_BITS), .StepBits(`CD_PLANE_STEP_UV_BITS), .AccBits(`CD_PIXEL_UV_BITS)
+    ) u_plane_v (
+      .clk_i, .init_i(column_init && mode_divide), .advance_i(column_advance && mode_divide),
+      .start_i(plane_start && mode_divide), .step_i(plane_step && mode_divide),
+      .first_offset_i(column_first - minor_lo), .jump_i(1'b0), .start_value_o(), .next_value_o(),
+      .at_ref_i(v_at_ref), .per_major_i(v_per_major), .per_minor_i(v_per_minor), .value_o(pixel_v)
+    );
+
+    pixel_divide #(
+      .TagBits(2 * PixelBits)
+    ) u_pixel_divide (
+      .clk_i,
+      .rst_ni,
+      .advance_i   (!stall),
+      .valid_i     (pixel_issue),
+      .q_i         (pixel_q),
+      .u_i         (pixel_u),
+      .v_i         (pixel_v),
+      .tag_i       ({major_q, minor_q}),
+      .valid_o     (pipe_valid),
+      .u_o         (pipe_u),
+      .v_o         (pipe_v),
+      .saturated_o (pipe_saturated),
+      .depth_out_o (pipe_depth_out),
+      .tag_o       (pipe_tag)
+    );
+  end else begin : gen_no_divide
+    logic unused_planes;
+    assign unused_planes = ^{q_at_ref, u_at_ref, v_at_ref, q_per_major, u_per_major, v_per_major,
+                             q_per_minor, u_per_minor, v_per_minor, plane_start, plane_step,
+                             pixel_issue};
+    assign pipe_valid = 1'b0;
+    assign pipe_u = '0;
+    assign pipe_v = '0;
+    assign pipe_saturated = 1'b0;
+    assign pipe_depth_out = 1'b0;
+    assign pipe_tag = '0;
+  end
+  /* verilator lint_on PINCONNECTEMPTY */
+
+  // affine: u and v from their own planes, set up by six serial dividers,
+  // accumulated per pixel and rounded to the output format.
+  logic signed [OutBits-1:0] affine_u, affine_v;
+  logic                      affine_saturated;
+  logic [3*`CD_UV_BITS-1:0]  u_vertex, v_vertex;
+  logic signed [`CD_DIFF_BITS-1:0] geometry_dx1, geometry_dy1, geometry_dx2, geometry_dy2;
+  logic signed [`CD_DIFF_BITS-1:0] geometry_ref_x, geometry_ref_y;
+  logic signed [`CD_DET_BITS-1:0]  geometry_det;
+
+  /* verilator lint_off PINCONNECTEMPTY */
+  if (HasAffine) begin : gen_affine
+    localparam int RefBits = `CD_AFFINE_REF_BITS;
+    localparam int AccBits = `CD_AFFINE_ACC_BITS;
+    localparam int SFrac   = `CD_S_FRAC;
+    localparam int OutFrac = `CD_OUT_FRAC;
+    logic signed [RefBits-1:0]      u_ref, v_ref;
+    logic signed [`CD_S_BITS-1:0]   u_major, u_minor, v_major, v_minor;
+    logic                           setup_saturated;
+    logic signed [AccBits-1:0]      acc_u, acc_v;
+    logic [1:0]                     narrow_saturated;
+    localparam logic signed [7:0]   NarrowShift = 8'(SFrac - OutFrac);
+
+    affine_setup u_affine_setup (
+      .clk_i, .rst_ni,
+      .setup_i      (state_q == StSetup && mode_affine),
+      .stage_count_i(8'(count_q)),
+      .u_vertex_i   (u_vertex),
+      .v_vertex_i   (v_vertex),
+      .dx1_i        (geometry_dx1),
+      .dy1_i        (geometry_dy1),
+      .dx2_i        (geometry_dx2),
+      .dy2_i        (geometry_dy2),
+      .det_i        (geometry_det),
+      .ref_x_i      (geometry_ref_x),
+      .ref_y_i      (geometry_ref_y),
+      .x_major_i    (setup_x_major),
+      .u_ref_o      (u_ref),
+      .v_ref_o      (v_ref),
+      .u_major_o    (u_major),
+      .u_minor_o    (u_minor),
+      .v_major_o    (v_major),
+      .v_minor_o    (v_minor),
+      .saturated_o  (setup_saturated)
+    );
+
+    plane_accumulator #(
+      .RefBits(RefBits), .StepBits(`CD_S_BITS), .AccBits(AccBits)
+    ) u_plane_u (
+      .clk_i, .init_i(column_init && mode_affine), .advance_i(column_advance && mode_affine),
+      .start_i(plane_start && mode_affine), .step_i(plane_step && mode_affine),
+      .first_offset_i(column_first - minor_lo), .jump_i(1'b0), .start_value_o(), .next_value_o(),
+      .at_ref_i(u_ref), .per_major_i(u_major), .per_minor_i(u_minor), .value_o(acc_u)
+    );
+    plane_accumulator #(
+      .RefBits(RefBits), .StepBits(`CD_S_BITS), .AccBits(AccBits)
+    ) u_plane_v (
+      .clk_i, .init_i(column_init && mode_affine), .advance_i(column_advance && mode_affine),
+      .start_i(plane_start && mode_affine), .step_i(plane_step && mode_affine),
+      .first_offset_i(column_first - minor_lo), .jump_i(1'b0), .start_value_o(), .next_value_o(),
+      .at_ref_i(v_ref), .per_major_i(v_major), .per_minor_i(v_minor), .value_o(acc_v)
+    );
+
+    shift_round #(.InBits(AccBits), .OutBits(OutBits), .ShiftBits(8),
+                  .MaxLeft(OutFrac > SFrac ? OutFrac - SFrac : 0))
+      u_narrow_u (.enable_i(state_q == StPixel && mode_affine), .in_i(acc_u), .shift_i(NarrowShift),
+                  .out_o(affine_u), .saturated_o(narrow_saturated[0]));
+    shift_round #(.InBits(AccBits), .OutBits(OutBits), .ShiftBits(8),
+                  .MaxLeft(OutFrac > SFrac ? OutFrac - SFrac : 0))
+      u_narrow_v (.enable_i(state_q == StPixel && mode_affine), .in_i(acc_v), .shift_i(NarrowShift),
+                  .out_o(affine_v), .saturated_o(narrow_saturated[1]));
+    assign affine_saturated = |narrow_saturated || setup_saturated;
+  end else begin : gen_no_affine
+    logic unused_geometry;
+    assign unused_geometry = ^{u_vertex, v_vertex, geometry_dx1, geometry_dy1, geometry_dx2,
+                               geometry_dy2, geometry_ref_x, geometry_ref_y, geometry_det};
+    assign affine_u = '0;
+    assign affine_v = '0;
+    assign affine_saturated = 1'b0;
+  end
+  /* verilator lint_on PINCONNECTEMPTY */
+
+  // affine-subN: end points every 2^segment_log2 pixels, affine between.
+  logic                      sub_valid, sub_saturated, sub_depth_out, sub_hold;
+  logic signed [OutBits-1:0] sub_u, sub_v;
+  assign sub_hold = mode_sub && state_q == StPixel && sub_valid && !frag_ready_i;
+
+  if (HasAffineSub) begin : gen_affine_sub
+    affine_sub_datapath #(
+      .MaxSegmentLog2(MaxSegmentLog2)
+    ) u_affine_sub (
+      .clk_i, .rst_ni,
+      .hold_i           (sub_hold),
+      .segment_log2_i   (segment_log2_q),
+      .column_init_i    (column_init && mode_sub),
+      .column_advance_i (column_advance && mode_sub),
+      .span_i           (plane_start && mode_sub),
+      .first_offset_i   (column_first - minor_lo),
+      .span_last_i      (column_last - column_first),
+      .take_i           (mode_sub && state_q == StPixel && sub_valid && frag_ready_i),
+      .q_at_ref_i       (q_at_ref),
+      .u_at_ref_i       (u_at_ref),
+      .v_at_ref_i       (v_at_ref),
+      .q_per_major_i    (q_per_major),
+      .u_per_major_i    (u_per_major),
+      .v_per_major_i    (v_per_major),
+      .q_per_minor_i    (q_per_minor),
+      .u_per_minor_i    (u_per_minor),
+      .v_per_minor_i    (v_per_minor),
+      .valid_o          (sub_valid),
+      .u_o              (sub_u),
+      .v_o              (sub_v),
+      .saturated_o      (sub_saturated),
+      .depth_out_o      (sub_depth_out)
+    );
+  end else begin : gen_no_affine_sub
+    logic unused_sub_hold;
+    assign unused_sub_hold = sub_hold;
+    assign sub_valid = 1'b0;
+    assign sub_u = '0;
+    assign sub_v = '0;
+    assign sub_saturated = 1'b0;
+    assign sub_depth_out = 1'b0;
+  end
 
   logic signed [OutBits-1:0] frag_u, frag_v;
   logic [7:0]         frag_flags;
-
-  correction_adder #(
-    .HasCorrection(HasCorrection)
-  ) u_correction_adder (
-    .valid_i           (state_q == StPixel),
-    .own_entry_i       (own_entry),
-    .neighbour_entry_i (neighbour_entry),
-    .correct_i         (correction_q && direction_q != 2'sd0),
-    .offset_i          (offset_q),
-    .weight_i          (weight_q),
-    .u_o               (frag_u),
-    .v_o               (frag_v),
-    .flags_o           (frag_flags)
-  );
+  always_comb begin
+    frag_u = table_u;
+    frag_v = table_v;
+    frag_flags = table_flags;
+    if (mode_divide) begin
+      frag_u = pipe_u;
+      frag_v = pipe_v;
+      frag_flags = '0;
+      frag_flags[`CD_FLAG_OUTPUT_SATURATED] = pipe_saturated;
+    end else if (mode_affine) begin
+      frag_u = affine_u;
+      frag_v = affine_v;
+      frag_flags = '0;
+      frag_flags[`CD_FLAG_OUTPUT_SATURATED] = affine_saturated;
+    end else if (mode_sub) begin
+      frag_u = sub_u;
+      frag_v = sub_v;
+      frag_flags = '0;
+      frag_flags[`CD_FLAG_OUTPUT_SATURATED] = sub_saturated;
+    end
+  end
 
   // ---------------------------------------------------------------- control
   logic signed [BandBits-1:0] guard, depth, pixel_lines, lines_per_band;
@@ -269,9 +558,18 @@ module cd_scan_unit #(
   logic               read_minor_valid;
   logic               band_done, last_column;
 
+  // With one datapath the mode is a constant, and synthesis keeps only it.
+  assign mode_divide = HasDivide && (Datapaths == 1 || kind_q == KindDivide);
+  assign mode_affine = HasAffine && (Datapaths == 1 || (kind_q == KindAffine && segment_log2_q == '0));
+  assign mode_sub = HasAffineSub && (Datapaths == 1 || (kind_q == KindAffine && segment_log2_q != '0));
+  assign per_pixel = mode_divide || mode_affine || mode_sub;
+  assign stall = mode_divide && pipe_valid && !frag_ready_i;
+
   always_comb begin
     state_d = state_q;
     count_d = count_q;
+    kind_d = kind_q;
+    segment_log2_d = segment_log2_q;
     density_log2_d = density_log2_q;
     correction_d = correction_q;
     band_lo_d = band_lo_q;
@@ -297,6 +595,9 @@ module cd_scan_unit #(
     read_minor_valid = 1'b0;
     read_minor = '0;
     band_done = 1'b0;
+    plane_start = 1'b0;
+    plane_step = 1'b0;
+    pixel_issue = 1'b0;
 
     guard = BandBits'($signed({1'b0, correction_q}));
     pixel_lines = BandBits'(pixel_line_hi) - BandBits'(pixel_line_lo) + BandBits'(1);
@@ -312,6 +613,8 @@ module cd_scan_unit #(
         if (tri_valid_i) begin
           state_d = StSetup;
           count_d = '0;
+          kind_d = kind_i;
+          segment_log2_d = segment_log2_i;
           density_log2_d = density_log2_i;
           correction_d = correction_i && HasCorrection;
           cycles_d = '0;
@@ -330,7 +633,10 @@ module cd_scan_unit #(
             state_d = StRecord;
           end else begin
             flags_d = setup_flags;
-            if (setup_no_lines) begin
+            if (per_pixel) begin
+              state_d = StColumn;
+              column_init = 1'b1;
+            end else if (setup_no_lines) begin
               state_d = StScan;
             end else begin
               state_d = StFill;
@@ -358,7 +664,7 @@ module cd_scan_unit #(
           column_init = 1'b1;
         end
       end
-      StColumn: begin
+      StColumn: if (!stall) begin
         major_d = column_major;
         line_shift_d = column_line_shift;
         direction_d = column_direction;
@@ -367,8 +673,9 @@ module cd_scan_unit #(
         last_d = column_last;
         if (column_has_pixels) begin
           state_d = StPixel;
-          read_minor_valid = 1'b1;
+          read_minor_valid = !per_pixel;
           read_minor = column_first;
+          plane_start = per_pixel;
         end else if (last_column) begin
           band_done = 1'b1;
         end else begin
@@ -376,8 +683,25 @@ module cd_scan_unit #(
           column_advance = 1'b1;
         end
       end
-      StPixel: begin
-        if (frag_ready_i) begin
+      StPixel: if (mode_divide) begin
+        // Issue the pixel into the pipeline; its fragment leaves RecipLatency cycles later.
+        if (!stall) begin
+          pixel_issue = 1'b1;
+          if (minor_q == last_q) begin
+            if (last_column) begin
+              band_done = 1'b1;
+            end else begin
+              state_d = StColumn;
+              offset_d = offset_q + PixelBits'(1);
+              column_advance = 1'b1;
+            end
+          end else begin
+            minor_d = minor_q + PixelBits'(1);
+            plane_step = 1'b1;
+          end
+        end
+      end else begin
+        if (frag_ready_i && (!mode_sub || sub_valid)) begin
           pixels_d = pixels_q + CountBits'(1);
           flags_d = flags_q | frag_flags;
           if (minor_q == last_q) begin
@@ -390,14 +714,19 @@ module cd_scan_unit #(
             end
           end else begin
             minor_d = minor_q + PixelBits'(1);
-            read_minor_valid = 1'b1;
+            read_minor_valid = !per_pixel;
             read_minor = minor_q + PixelBits'(1);
+            plane_step = mode_affine;
           end
         end
       end
       StScan: begin
         count_d = count_q + StepCountBits'(1);
         if ((PixelBits+1)'(count_q) == major_count - (PixelBits+1)'(1)) state_d = StRecord;
+      end
+      StDrain: if (!stall) begin
+        count_d = count_q + StepCountBits'(1);
+        if (count_q == StepCountBits'(RecipLatency - 1)) state_d = StRecord;
       end
       StRecord: begin
         if (rec_ready_i) state_d = StIdle;
@@ -408,7 +737,12 @@ module cd_scan_unit #(
     // End of a band: the next band, or the record.
     next_band_hi = next_band_lo + lines_per_band - BandBits'(1);
     if (next_band_hi > BandBits'(pixel_line_hi)) next_band_hi = BandBits'(pixel_line_hi);
-    if (band_done) begin
+    if (band_done && mode_divide) begin
+      state_d = StDrain;
+      count_d = '0;
+    end else if (band_done && (mode_affine || mode_sub)) begin
+      state_d = StRecord;
+    end else if (band_done) begin
       if (band_hi_q < pixel_line_hi) begin
         state_d = StFill;
         count_d = '0;
@@ -422,6 +756,15 @@ module cd_scan_unit #(
         state_d = StRecord;
       end
     end
+
+    // A per-pixel fragment taken.
+    if (mode_divide && pipe_valid && frag_ready_i) begin
+      pixels_d = pixels_q + CountBits'(1);
+      flags_d = flags_q | frag_flags;
+      if (pipe_depth_out) flags_d[`CD_FLAG_DEPTH_RANGE] = 1'b1;
+    end
+    // An affine-subN end point with q <= 0.
+    if (mode_sub && sub_depth_out) flags_d[`CD_FLAG_DEPTH_RANGE] = 1'b1;
 
     // Table read for the next pixel: its line, and the neighbour line.
     read_line = (BandBits'($signed({1'b0, read_minor})) - BandBits'($signed({1'b0, minor_lo})))
@@ -440,6 +783,8 @@ module cd_scan_unit #(
     if (!rst_ni) begin
       state_q <= StIdle;
       count_q <= '0;
+      kind_q <= '0;
+      segment_log2_q <= '0;
       density_log2_q <= '0;
       correction_q <= 1'b0;
       band_lo_q <= '0;
@@ -460,6 +805,8 @@ module cd_scan_unit #(
     end else begin
       state_q <= state_d;
       count_q <= count_d;
+      kind_q <= kind_d;
+      segment_log2_q <= segment_log2_d;
       density_log2_q <= density_log2_d;
       correction_q <= correction_d;
       band_lo_q <= band_lo_d;
@@ -483,9 +830,12 @@ module cd_scan_unit #(
   // ---------------------------------------------------------------- outputs
   assign tri_ready_o = state_q == StIdle;
 
-  assign frag_valid_o = state_q == StPixel;
-  assign frag_x_o = setup_x_major ? 16'(major_q) : 16'(minor_q);
-  assign frag_y_o = setup_x_major ? 16'(minor_q) : 16'(major_q);
+  logic [PixelBits-1:0] frag_major, frag_minor;
+  assign frag_major = mode_divide ? pipe_tag[PixelBits +: PixelBits] : major_q;
+  assign frag_minor = mode_divide ? pipe_tag[0 +: PixelBits] : minor_q;
+  assign frag_valid_o = mode_divide ? pipe_valid : state_q == StPixel && (!mode_sub || sub_valid);
+  assign frag_x_o = setup_x_major ? 16'(frag_major) : 16'(frag_minor);
+  assign frag_y_o = setup_x_major ? 16'(frag_minor) : 16'(frag_major);
   assign frag_u_o = 64'(frag_u);
   assign frag_v_o = 64'(frag_v);
   assign frag_flags_o = frag_flags;
@@ -499,19 +849,38 @@ module cd_scan_unit #(
 
   localparam int TBits = `CD_T_BITS;
   localparam int SBits = `CD_S_BITS;
-  assign obs_setup_valid_o = state_q == StSetup && count_q == StepCountBits'(SetupCycles - 1);
-  assign obs_setup_bits_o = {4'd0, setup_flags[`CD_FLAG_DEPTH_RANGE], setup_no_lines, setup_x_major,
-                             setup_empty};
-  assign obs_setup_g_o = 32'(setup_g);
-  assign obs_setup_box_o = {16'(major_lo), 16'(major_count), 16'(minor_lo), 16'(minor_hi)};
-  assign obs_setup_lines_o = {32'(pixel_line_lo), 32'(pixel_line_hi)};
-  assign obs_write_valid_o = write_valid;
-  assign obs_write_addr_o = 32'(write_addr);
-  assign obs_write_tu_o = 64'($signed(write_entry[`CD_WORD_TU_LSB +: TBits]));
-  assign obs_write_tv_o = 64'($signed(write_entry[`CD_WORD_TV_LSB +: TBits]));
-  assign obs_write_su_o = 64'($signed(write_entry[`CD_WORD_SU_LSB +: SBits]));
-  assign obs_write_sv_o = 64'($signed(write_entry[`CD_WORD_SV_LSB +: SBits]));
-  assign obs_write_flags_o = {write_entry[`CD_WORD_DEPTH_RANGE_BIT], write_entry[`CD_WORD_SATURATED_BIT]};
+  // Observation: the setup results and the table writes (what the design
+  // uses), or 0 when HasObservation is off (synthesis), so that the ports keep
+  // no logic alive that the design itself does not need.
+  logic [WordBits-1:0] observed_entry;
+  assign observed_entry = HasObservation && HasTable ? write_entry : '0;
+  always_comb begin
+    obs_setup_valid_o = '0;
+    obs_setup_bits_o = '0;
+    obs_setup_g_o = '0;
+    obs_setup_box_o = '0;
+    obs_setup_lines_o = '0;
+    obs_write_valid_o = '0;
+    obs_write_addr_o = '0;
+    if (HasObservation) begin
+      obs_setup_valid_o = state_q == StSetup && count_q == StepCountBits'(SetupCycles - 1);
+      obs_setup_bits_o = {4'd0, setup_flags[`CD_FLAG_DEPTH_RANGE], setup_no_lines, setup_x_major,
+                          setup_empty};
+      obs_setup_box_o = {16'(major_lo), 16'(major_count), 16'(minor_lo), 16'(minor_hi)};
+      if (HasTable) begin
+        obs_setup_g_o = 32'(setup_g);
+        obs_setup_lines_o = {32'(pixel_line_lo), 32'(pixel_line_hi)};
+        obs_write_valid_o = write_valid;
+        obs_write_addr_o = 32'(write_addr);
+      end
+    end
+  end
+  assign obs_write_tu_o = 64'($signed(observed_entry[`CD_WORD_TU_LSB +: TBits]));
+  assign obs_write_tv_o = 64'($signed(observed_entry[`CD_WORD_TV_LSB +: TBits]));
+  assign obs_write_su_o = 64'($signed(observed_entry[`CD_WORD_SU_LSB +: SBits]));
+  assign obs_write_sv_o = 64'($signed(observed_entry[`CD_WORD_SV_LSB +: SBits]));
+  assign obs_write_flags_o = {observed_entry[`CD_WORD_DEPTH_RANGE_BIT],
+                              observed_entry[`CD_WORD_SATURATED_BIT]};
 
 `ifndef SYNTHESIS
   // Handshakes: a fragment or record offered and refused stays unchanged until

@@ -19,7 +19,11 @@
 `include "cd_widths.svh"
 `default_nettype none
 
-module column_walker (
+module column_walker #(
+  // The constant-depth designs' part: m g o, the line shift, the direction and
+  // weight of the correction, and the band clip. 0 walks coverage spans only.
+  parameter bit HasLines = 1'b1
+) (
   input  logic                              clk_i,
   input  logic                              rst_ni,
   input  logic                              active_i,  // a column cycle: outputs wanted
@@ -38,7 +42,9 @@ module column_walker (
   input  logic [3*`CD_EDGE_STEP_BITS-1:0]   edge_step_i,
   input  logic [3*`CD_EDGE_SLOPE_BITS-1:0]  edge_slope_i,
   input  logic [3*`CD_EDGE_STEP_BITS-1:0]   edge_slope_rem_i,
-  // Lines of the current band.
+  // Lines of the current band; clip_band_i = 0 (the per-pixel designs) walks
+  // the whole covered span.
+  input  logic                              clip_band_i,
   input  logic signed [`CD_LINE_BITS-1:0]   band_lo_i,
   input  logic signed [`CD_LINE_BITS-1:0]   band_hi_i,
   // The current column.
@@ -88,7 +94,7 @@ module column_walker (
         rem_d[i] = edge_rem_i[StepBits*i +: StepBits];
       end
     end else if (advance_i) begin
-      exact_d = exact_q + (ExactBits'(g_i) <<< density_log2_i);
+      if (HasLines) exact_d = exact_q + (ExactBits'(g_i) <<< density_log2_i);
       for (int i = 0; i < 3; i++) begin
         rem_sum = (StepBits+1)'(rem_q[i]) + (StepBits+1)'(edge_slope_rem_i[StepBits*i +: StepBits]);
         bound_d[i] = bound_q[i] + BoundBits'($signed(edge_slope_i[SlopeBits*i +: SlopeBits]));
@@ -148,9 +154,9 @@ module column_walker (
     if (active_i) begin
       major_o = major_lo_i + offset_i;
       // r(o) rounds m g o, ties toward +inf; the pixel lies t below its line.
-      rounded = (exact_q + ExactBits'(1 <<< (GFrac - 1))) >>> GFrac;
+      if (HasLines) rounded = (exact_q + ExactBits'(1 <<< (GFrac - 1))) >>> GFrac;
       line_shift_o = LineBits'(rounded);
-      t = TDistBits'((rounded <<< GFrac) - exact_q);
+      if (HasLines) t = TDistBits'((rounded <<< GFrac) - exact_q);
       direction_o = t > 0 ? 2'sd1 : (t < 0 ? -2'sd1 : 2'sd0);
       t_abs = t < 0 ? TDistBits'(-t) : TDistBits'(t);
       weight_wide = ((WeightWideBits'(t_abs) + WeightWideBits'(WeightHalf)) >> WeightRight) << WeightLeft;
@@ -173,8 +179,10 @@ module column_walker (
                    ((-((LineBits+1)'(band_lo_i)) - (LineBits+1)'(line_shift_o)) >>> density_log2_i);
       band_last = (LineBits+1)'($signed({1'b0, minor_lo_i})) +
                   (((LineBits+1)'(band_hi_i) + (LineBits+1)'(line_shift_o)) >>> density_log2_i);
-      if (SpanBits'(band_first) > span_lo) span_lo = SpanBits'(band_first);
-      if (SpanBits'(band_last) < span_hi) span_hi = SpanBits'(band_last);
+      if (HasLines && clip_band_i) begin
+        if (SpanBits'(band_first) > span_lo) span_lo = SpanBits'(band_first);
+        if (SpanBits'(band_last) < span_hi) span_hi = SpanBits'(band_last);
+      end
       has_pixels_o = !span_empty && span_lo <= span_hi;
       first_o = PixelBits'(span_lo);
       last_o = PixelBits'(span_hi);

@@ -4,10 +4,13 @@
 // R = 2^(RecipBits-1) only for M = 2^(RecipBits+1) - 1).
 //
 // A pipelined restoring divider of exactly Latency register stages and one
-// operand a cycle, with no stall:
-//  - an operand presented with valid_i in cycle t is on valid_o, recip_o and
-//    tag_o in cycle t + Latency (Latency rising edges later), and for that one
-//    cycle only; tag_o is the tag_i it came with;
+// operand a cycle, which a stall holds:
+//  - every stage moves on at a rising edge where advance_i is 1 and holds
+//    (valid, tag and partial results) where it is 0;
+//  - an operand presented with valid_i in a cycle with advance_i is on
+//    valid_o, recip_o and tag_o Latency advancing edges later, and stays there
+//    until the next advancing edge; tag_o is the tag_i it came with. With
+//    advance_i always 1 that is cycle t + Latency, for that one cycle only;
 //  - valid_o is 0 in every other cycle; an asynchronous reset (rst_ni low)
 //    clears it at once and drops the operands in flight; recip_o and tag_o
 //    are unspecified while valid_o is 0 (data registers have no reset);
@@ -29,6 +32,7 @@ module reciprocal #(
 ) (
   input  logic               clk_i,
   input  logic               rst_ni,
+  input  logic               advance_i,
   input  logic               valid_i,
   input  logic [RecipBits:0] mantissa_i,
   input  logic [TagBits-1:0] tag_i,
@@ -113,14 +117,16 @@ module reciprocal #(
     always_ff @(posedge clk_i or negedge rst_ni) begin
       if (!rst_ni) begin
         valid_q <= 1'b0;
-      end else begin
+      end else if (advance_i) begin
         valid_q <= valid_chain[s];
       end
     end
 
     always_ff @(posedge clk_i) begin
-      tag_q <= tag_chain[s*TagBits +: TagBits];
-      quo_q <= quo_d;
+      if (advance_i) begin
+        tag_q <= tag_chain[s*TagBits +: TagBits];
+        quo_q <= quo_d;
+      end
     end
 
     assign valid_chain[s+1]                    = valid_q;
@@ -159,8 +165,10 @@ module reciprocal #(
         logic [RecipBits:0]   rem_q;
         logic [RecipBits-1:0] mantissa_q;
         always_ff @(posedge clk_i) begin
-          rem_q      <= rem_step;
-          mantissa_q <= mantissa_in;
+          if (advance_i) begin
+            rem_q      <= rem_step;
+            mantissa_q <= mantissa_in;
+          end
         end
         assign rem_chain[(s+1)*QuoBits +: QuoBits]          = rem_q;
         assign mantissa_chain[(s+1)*RecipBits +: RecipBits] = mantissa_q;

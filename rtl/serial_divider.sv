@@ -47,8 +47,8 @@ module serial_divider #(
   if (NumBits < 1 || DenBits < 1 || QuoBits < 1) begin : gen_widths_check
     $error("serial_divider needs NumBits, DenBits and QuoBits >= 1");
   end
-  if (BitsPerCycle < 1 || BitsPerCycle > 8) begin : gen_bits_per_cycle_check
-    $error("serial_divider needs 1 <= BitsPerCycle <= 8");
+  if (BitsPerCycle < 1 || BitsPerCycle > 16) begin : gen_bits_per_cycle_check
+    $error("serial_divider needs 1 <= BitsPerCycle <= 16");
   end
 
   // Elaboration-time arithmetic, without a divider.

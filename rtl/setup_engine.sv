@@ -19,6 +19,14 @@
 `default_nettype none
 
 module setup_engine #(
+  // The constant-depth designs' hardware: the slope g and its divider, the
+  // line range, the S numerators and the table fill (reciprocal, products).
+  parameter bit HasLines = 1'b1,
+  // The per-pixel designs' planes along the major axis (q_per_major_o ...).
+  parameter bit HasPixelPlanes = 1'b1,
+  // The planes of q, U = u q and V = v q and their shared shift (every design
+  // but affine, which takes its own planes of u and v from affine_setup).
+  parameter bit HasPlanes = 1'b1,
   parameter int SramDepth = `CD_TABLE_DEPTH,
   localparam int AddrBits = $clog2(SramDepth)
 ) (
@@ -50,6 +58,29 @@ module setup_engine #(
   output logic signed [`CD_LINE_BITS-1:0] pixel_line_lo_o,
   output logic signed [`CD_LINE_BITS-1:0] pixel_line_hi_o,
   output logic [7:0]                 flags_o,
+  // Normalised planes of q, U, V: at the reference pixel, per pixel along the
+  // major axis and along the minor axis (per_minor is per line: the minor
+  // step at m = 1, which every per-pixel design uses).
+  output logic signed [`CD_PLANE_REF_Q_BITS-1:0]   q_at_ref_o,
+  output logic signed [`CD_PLANE_REF_UV_BITS-1:0]  u_at_ref_o,
+  output logic signed [`CD_PLANE_REF_UV_BITS-1:0]  v_at_ref_o,
+  output logic signed [`CD_PLANE_STEP_Q_BITS-1:0]  q_per_major_o,
+  output logic signed [`CD_PLANE_STEP_UV_BITS-1:0] u_per_major_o,
+  output logic signed [`CD_PLANE_STEP_UV_BITS-1:0] v_per_major_o,
+  output logic signed [`CD_PLANE_STEP_Q_BITS-1:0]  q_per_minor_o,
+  output logic signed [`CD_PLANE_STEP_UV_BITS-1:0] u_per_minor_o,
+  output logic signed [`CD_PLANE_STEP_UV_BITS-1:0] v_per_minor_o,
+  // Geometry for affine_setup, valid from stage B: the vertices' u and v as
+  // loaded, vertex differences, the determinant and the reference offsets.
+  output logic [3*`CD_UV_BITS-1:0]           u_vertex_o,
+  output logic [3*`CD_UV_BITS-1:0]           v_vertex_o,
+  output logic signed [`CD_DIFF_BITS-1:0]    dx1_o,
+  output logic signed [`CD_DIFF_BITS-1:0]    dy1_o,
+  output logic signed [`CD_DIFF_BITS-1:0]    dx2_o,
+  output logic signed [`CD_DIFF_BITS-1:0]    dy2_o,
+  output logic signed [`CD_DET_BITS-1:0]     det_o,
+  output logic signed [`CD_DIFF_BITS-1:0]    ref_x_o,
+  output logic signed [`CD_DIFF_BITS-1:0]    ref_y_o,
   // Edge trackers for the column walker, edge i in bits i*W +: W.
   output logic [5:0]                 edge_kind_o,    // 2 bits per edge: 0 none, 1 lower, 2 upper
   output logic [3*`CD_EDGE_BOUND_BITS-1:0] edge_bound_o,
@@ -297,8 +328,10 @@ module setup_engine #(
         else q_wide[i] = (q_wide[i] + (34'd1 << (q_shift[i] - 10'sd1))) >> q_shift[i];
         q_vertex_d[i] = QVertexBits'(q_wide[i]);
         if (q_vertex_d[i] == '0) depth_range_d = 1'b1;
-        u_attr_d[i] = AttrUvBits'($signed({1'b0, q_vertex_d[i]})) * AttrUvBits'(u_q[i]);
-        v_attr_d[i] = AttrUvBits'($signed({1'b0, q_vertex_d[i]})) * AttrUvBits'(v_q[i]);
+        if (HasPlanes) begin
+          u_attr_d[i] = AttrUvBits'($signed({1'b0, q_vertex_d[i]})) * AttrUvBits'(u_q[i]);
+          v_attr_d[i] = AttrUvBits'($signed({1'b0, q_vertex_d[i]})) * AttrUvBits'(v_q[i]);
+        end
       end
     end
   end
@@ -381,24 +414,29 @@ module setup_engine #(
       det_abs = det_q < 0 ? -det_q : det_q;
       dq1 = (AttrQBits+1)'($signed({1'b0, q_vertex_q[1]})) - (AttrQBits+1)'($signed({1'b0, q_vertex_q[0]}));
       dq2 = (AttrQBits+1)'($signed({1'b0, q_vertex_q[2]})) - (AttrQBits+1)'($signed({1'b0, q_vertex_q[0]}));
+      q_coef_x_d = CoefQBits'(dq1) * CoefQBits'(dy2_q) - CoefQBits'(dq2) * CoefQBits'(dy1_q);
+      q_coef_y_d = CoefQBits'(dq2) * CoefQBits'(dx1_q) - CoefQBits'(dq1) * CoefQBits'(dx2_q);
+      if (det_q < 0) begin
+        q_coef_x_d = -q_coef_x_d;
+        q_coef_y_d = -q_coef_y_d;
+      end
+    end
+    if (stage_b && HasPlanes) begin
       du1 = (AttrUvBits+1)'(u_attr_q[1]) - (AttrUvBits+1)'(u_attr_q[0]);
       du2 = (AttrUvBits+1)'(u_attr_q[2]) - (AttrUvBits+1)'(u_attr_q[0]);
       dv1 = (AttrUvBits+1)'(v_attr_q[1]) - (AttrUvBits+1)'(v_attr_q[0]);
       dv2 = (AttrUvBits+1)'(v_attr_q[2]) - (AttrUvBits+1)'(v_attr_q[0]);
-      q_coef_x_d = CoefQBits'(dq1) * CoefQBits'(dy2_q) - CoefQBits'(dq2) * CoefQBits'(dy1_q);
-      q_coef_y_d = CoefQBits'(dq2) * CoefQBits'(dx1_q) - CoefQBits'(dq1) * CoefQBits'(dx2_q);
       u_coef_x_d = CoefUvBits'(du1) * CoefUvBits'(dy2_q) - CoefUvBits'(du2) * CoefUvBits'(dy1_q);
       u_coef_y_d = CoefUvBits'(du2) * CoefUvBits'(dx1_q) - CoefUvBits'(du1) * CoefUvBits'(dx2_q);
       v_coef_x_d = CoefUvBits'(dv1) * CoefUvBits'(dy2_q) - CoefUvBits'(dv2) * CoefUvBits'(dy1_q);
       v_coef_y_d = CoefUvBits'(dv2) * CoefUvBits'(dx1_q) - CoefUvBits'(dv1) * CoefUvBits'(dx2_q);
       if (det_q < 0) begin
-        q_coef_x_d = -q_coef_x_d;
-        q_coef_y_d = -q_coef_y_d;
         u_coef_x_d = -u_coef_x_d;
         u_coef_y_d = -u_coef_y_d;
         v_coef_x_d = -v_coef_x_d;
         v_coef_y_d = -v_coef_y_d;
       end
+      // The largest q |det| sets the shared shift.
       q_peak_d = '0;
       for (int i = 0; i < 3; i++) begin
         peak_candidate[i] = PeakBits'(q_vertex_q[i]) * PeakBits'(det_abs);
@@ -466,7 +504,7 @@ module setup_engine #(
     for (int i = 0; i < 3; i++) edge_n[i] = '0;
     for (int i = 0; i < 3; i++) edge_n_high[i] = '0;
     for (int i = 0; i < 3; i++) edge_n_high_abs[i] = '0;
-    if (stage_c) begin
+    if (stage_c && HasPlanes) begin
       q_ref_d = ExactRefQBits'($signed({1'b0, q_vertex_q[0]})) * ExactRefQBits'(det_abs_q) +
                 ExactRefQBits'(q_coef_x_q) * ExactRefQBits'(ref_x_q) +
                 ExactRefQBits'(q_coef_y_q) * ExactRefQBits'(ref_y_q);
@@ -476,11 +514,13 @@ module setup_engine #(
       v_ref_d = ExactRefUvBits'(v_attr_q[0]) * ExactRefUvBits'(det_abs_q) +
                 ExactRefUvBits'(v_coef_x_q) * ExactRefUvBits'(ref_x_q) +
                 ExactRefUvBits'(v_coef_y_q) * ExactRefUvBits'(ref_y_q);
-      // Lines run along the axis in which q changes least.
-      x_major_d = (q_coef_x_q < 0 ? -q_coef_x_q : q_coef_x_q) <= (q_coef_y_q < 0 ? -q_coef_y_q : q_coef_y_q);
       peak_length = '0;
       for (int i = 0; i < PeakBits; i++) if (q_peak_q[i]) peak_length = 8'(i + 1);
       shift_d = ShiftBits'($signed({1'b0, peak_length})) - ShiftBits'(PlaneBits);
+    end
+    if (stage_c) begin
+      // Lines run along the axis in which q changes least.
+      x_major_d = (q_coef_x_q < 0 ? -q_coef_x_q : q_coef_x_q) <= (q_coef_y_q < 0 ? -q_coef_y_q : q_coef_y_q);
 
       // g = round(-q_major 2^g_frac / q_minor) = floor((2 N' + D') / (2 D')) with
       // N' = -q_major sign(q_minor) 2^g_frac and D' = |q_minor|.
@@ -541,18 +581,26 @@ module setup_engine #(
   logic [GDivDenBits-1:0] g_remainder;
   logic                   g_overflow;
 
-  serial_divider #(
-    .NumBits(GDivNumBits), .DenBits(GDivDenBits), .QuoBits(GDivQuoBits),
-    .BitsPerCycle(DivBitsPerCycle)
-  ) u_g_divider (
-    .clk_i, .rst_ni,
-    .start_i      (stage_c),
-    .numerator_i  (g_div_num),
-    .denominator_i(g_div_den),
-    .quotient_o   (g_quotient),
-    .remainder_o  (g_remainder),
-    .overflow_o   (g_overflow)
-  );
+  if (HasLines) begin : gen_g_divider
+    serial_divider #(
+      .NumBits(GDivNumBits), .DenBits(GDivDenBits), .QuoBits(GDivQuoBits),
+      .BitsPerCycle(DivBitsPerCycle)
+    ) u_g_divider (
+      .clk_i, .rst_ni,
+      .start_i      (stage_c),
+      .numerator_i  (g_div_num),
+      .denominator_i(g_div_den),
+      .quotient_o   (g_quotient),
+      .remainder_o  (g_remainder),
+      .overflow_o   (g_overflow)
+    );
+  end else begin : gen_no_g_divider
+    logic unused_g_operands;
+    assign unused_g_operands = ^{g_div_num, g_div_den};
+    assign g_quotient = '0;
+    assign g_remainder = '0;
+    assign g_overflow = 1'b0;
+  end
 
   logic [BoundDivQuoBits-1:0] bound_quotient [3];
   logic [FreeBits-1:0]        bound_remainder [3];
@@ -592,7 +640,7 @@ module setup_engine #(
   logic [1:0]                       line_shift;
   logic signed [ShiftBits:0]        line_norm_shift;
   logic signed [ShiftBits+1:0]      step_norm_shift;
-  logic signed [AxisQBits-1:0]      q_axis_minor;
+  logic signed [AxisQBits-1:0]      q_axis_major, q_axis_minor;
   logic signed [AxisUvBits-1:0]     u_axis_major, u_axis_minor, v_axis_major, v_axis_minor;
   logic signed [StepNumBits-1:0]    step_u_exact, step_v_exact;
 
@@ -601,6 +649,7 @@ module setup_engine #(
     line_shift = '0;
     line_norm_shift = '0;
     step_norm_shift = '0;
+    q_axis_major = '0;
     q_axis_minor = '0;
     u_axis_major = '0;
     u_axis_minor = '0;
@@ -615,6 +664,7 @@ module setup_engine #(
       line_shift = density_log2_q;
       line_norm_shift = (ShiftBits+1)'(shift_q) + (ShiftBits+1)'($signed({1'b0, line_shift}));
       step_norm_shift = (ShiftBits+2)'(shift_q) + (ShiftBits+2)'(GFrac);
+      q_axis_major = (x_major_q ? AxisQBits'(q_coef_x_q) : AxisQBits'(q_coef_y_q)) <<< SubpixelBits;
       q_axis_minor = (x_major_q ? AxisQBits'(q_coef_y_q) : AxisQBits'(q_coef_x_q)) <<< SubpixelBits;
       u_axis_major = (x_major_q ? AxisUvBits'(u_coef_x_q) : AxisUvBits'(u_coef_y_q)) <<< SubpixelBits;
       u_axis_minor = (x_major_q ? AxisUvBits'(u_coef_y_q) : AxisUvBits'(u_coef_x_q)) <<< SubpixelBits;
@@ -631,33 +681,76 @@ module setup_engine #(
   logic signed [PlaneStepQBits-1:0]  q_per_line_d;
   logic signed [PlaneStepUvBits-1:0] u_per_line_d, v_per_line_d;
   logic signed [StepUvBits-1:0]      step_u_d, step_v_d;
-  logic [8:0]                        normalise_saturated;
+  logic signed [PlaneStepQBits-1:0]  q_per_major_d;
+  logic signed [PlaneStepUvBits-1:0] u_per_major_d, v_per_major_d;
+  logic [11:0]                       normalise_saturated;
 
-  shift_round #(.InBits(ExactRefQBits), .OutBits(PlaneRefQBits), .ShiftBits(ShiftBits),
-                .MaxLeft(MaxPlaneLeft))
-    u_norm_q_ref (.enable_i(stage_d), .in_i(q_ref_q), .shift_i(shift_q), .out_o(q_at_ref_d), .saturated_o(normalise_saturated[0]));
-  shift_round #(.InBits(ExactRefUvBits), .OutBits(PlaneRefUvBits), .ShiftBits(ShiftBits),
-                .MaxLeft(MaxPlaneLeft))
-    u_norm_u_ref (.enable_i(stage_d), .in_i(u_ref_q), .shift_i(shift_q), .out_o(u_at_ref_d), .saturated_o(normalise_saturated[1]));
-  shift_round #(.InBits(ExactRefUvBits), .OutBits(PlaneRefUvBits), .ShiftBits(ShiftBits),
-                .MaxLeft(MaxPlaneLeft))
-    u_norm_v_ref (.enable_i(stage_d), .in_i(v_ref_q), .shift_i(shift_q), .out_o(v_at_ref_d), .saturated_o(normalise_saturated[2]));
-  shift_round #(.InBits(AxisQBits), .OutBits(PlaneStepQBits), .ShiftBits(ShiftBits+1),
-                .MaxLeft(MaxPlaneLeft))
-    u_norm_q_line (.enable_i(stage_d), .in_i(q_axis_minor), .shift_i(line_norm_shift), .out_o(q_per_line_d), .saturated_o(normalise_saturated[3]));
-  shift_round #(.InBits(AxisUvBits), .OutBits(PlaneStepUvBits), .ShiftBits(ShiftBits+1),
-                .MaxLeft(MaxPlaneLeft))
-    u_norm_u_line (.enable_i(stage_d), .in_i(u_axis_minor), .shift_i(line_norm_shift), .out_o(u_per_line_d), .saturated_o(normalise_saturated[4]));
-  shift_round #(.InBits(AxisUvBits), .OutBits(PlaneStepUvBits), .ShiftBits(ShiftBits+1),
-                .MaxLeft(MaxPlaneLeft))
-    u_norm_v_line (.enable_i(stage_d), .in_i(v_axis_minor), .shift_i(line_norm_shift), .out_o(v_per_line_d), .saturated_o(normalise_saturated[5]));
-  shift_round #(.InBits(StepNumBits), .OutBits(StepUvBits), .ShiftBits(ShiftBits+2),
-                .MaxLeft(MaxPlaneLeft))
-    u_norm_step_u (.enable_i(stage_d), .in_i(step_u_exact), .shift_i(step_norm_shift), .out_o(step_u_d), .saturated_o(normalise_saturated[6]));
-  shift_round #(.InBits(StepNumBits), .OutBits(StepUvBits), .ShiftBits(ShiftBits+2),
-                .MaxLeft(MaxPlaneLeft))
-    u_norm_step_v (.enable_i(stage_d), .in_i(step_v_exact), .shift_i(step_norm_shift), .out_o(step_v_d), .saturated_o(normalise_saturated[7]));
+  if (HasPlanes) begin : gen_normalise
+    shift_round #(.InBits(ExactRefQBits), .OutBits(PlaneRefQBits), .ShiftBits(ShiftBits),
+                  .MaxLeft(MaxPlaneLeft))
+      u_norm_q_ref (.enable_i(stage_d), .in_i(q_ref_q), .shift_i(shift_q), .out_o(q_at_ref_d), .saturated_o(normalise_saturated[0]));
+    shift_round #(.InBits(ExactRefUvBits), .OutBits(PlaneRefUvBits), .ShiftBits(ShiftBits),
+                  .MaxLeft(MaxPlaneLeft))
+      u_norm_u_ref (.enable_i(stage_d), .in_i(u_ref_q), .shift_i(shift_q), .out_o(u_at_ref_d), .saturated_o(normalise_saturated[1]));
+    shift_round #(.InBits(ExactRefUvBits), .OutBits(PlaneRefUvBits), .ShiftBits(ShiftBits),
+                  .MaxLeft(MaxPlaneLeft))
+      u_norm_v_ref (.enable_i(stage_d), .in_i(v_ref_q), .shift_i(shift_q), .out_o(v_at_ref_d), .saturated_o(normalise_saturated[2]));
+    shift_round #(.InBits(AxisQBits), .OutBits(PlaneStepQBits), .ShiftBits(ShiftBits+1),
+                  .MaxLeft(MaxPlaneLeft))
+      u_norm_q_line (.enable_i(stage_d), .in_i(q_axis_minor), .shift_i(line_norm_shift), .out_o(q_per_line_d), .saturated_o(normalise_saturated[3]));
+    shift_round #(.InBits(AxisUvBits), .OutBits(PlaneStepUvBits), .ShiftBits(ShiftBits+1),
+                  .MaxLeft(MaxPlaneLeft))
+      u_norm_u_line (.enable_i(stage_d), .in_i(u_axis_minor), .shift_i(line_norm_shift), .out_o(u_per_line_d), .saturated_o(normalise_saturated[4]));
+    shift_round #(.InBits(AxisUvBits), .OutBits(PlaneStepUvBits), .ShiftBits(ShiftBits+1),
+                  .MaxLeft(MaxPlaneLeft))
+      u_norm_v_line (.enable_i(stage_d), .in_i(v_axis_minor), .shift_i(line_norm_shift), .out_o(v_per_line_d), .saturated_o(normalise_saturated[5]));
+  end else begin : gen_no_normalise
+    logic unused_exact_planes;
+    assign unused_exact_planes = ^{q_ref_q, u_ref_q, v_ref_q, q_axis_minor, u_axis_minor, v_axis_minor,
+                                   line_norm_shift};
+    assign q_at_ref_d = '0;
+    assign u_at_ref_d = '0;
+    assign v_at_ref_d = '0;
+    assign q_per_line_d = '0;
+    assign u_per_line_d = '0;
+    assign v_per_line_d = '0;
+    assign normalise_saturated[5:0] = '0;
+  end
+  if (HasLines) begin : gen_step_numerators
+    shift_round #(.InBits(StepNumBits), .OutBits(StepUvBits), .ShiftBits(ShiftBits+2),
+                  .MaxLeft(MaxPlaneLeft))
+      u_norm_step_u (.enable_i(stage_d), .in_i(step_u_exact), .shift_i(step_norm_shift), .out_o(step_u_d), .saturated_o(normalise_saturated[6]));
+    shift_round #(.InBits(StepNumBits), .OutBits(StepUvBits), .ShiftBits(ShiftBits+2),
+                  .MaxLeft(MaxPlaneLeft))
+      u_norm_step_v (.enable_i(stage_d), .in_i(step_v_exact), .shift_i(step_norm_shift), .out_o(step_v_d), .saturated_o(normalise_saturated[7]));
+  end else begin : gen_no_step_numerators
+    logic unused_step_exact;
+    assign unused_step_exact = ^{step_u_exact, step_v_exact, step_norm_shift};
+    assign step_u_d = '0;
+    assign step_v_d = '0;
+    assign normalise_saturated[7:6] = '0;
+  end
   assign normalise_saturated[8] = g_overflow && !g_zero_q;
+  // Per pixel along the major axis, for the per-pixel planes of divide and
+  // the other per-pixel designs (along the minor axis that is per_line at m = 1).
+  if (HasPixelPlanes) begin : gen_major_planes
+    shift_round #(.InBits(AxisQBits), .OutBits(PlaneStepQBits), .ShiftBits(ShiftBits),
+                  .MaxLeft(MaxPlaneLeft))
+      u_norm_q_major (.enable_i(stage_d), .in_i(q_axis_major), .shift_i(shift_q), .out_o(q_per_major_d), .saturated_o(normalise_saturated[9]));
+    shift_round #(.InBits(AxisUvBits), .OutBits(PlaneStepUvBits), .ShiftBits(ShiftBits),
+                  .MaxLeft(MaxPlaneLeft))
+      u_norm_u_major (.enable_i(stage_d), .in_i(u_axis_major), .shift_i(shift_q), .out_o(u_per_major_d), .saturated_o(normalise_saturated[10]));
+    shift_round #(.InBits(AxisUvBits), .OutBits(PlaneStepUvBits), .ShiftBits(ShiftBits),
+                  .MaxLeft(MaxPlaneLeft))
+      u_norm_v_major (.enable_i(stage_d), .in_i(v_axis_major), .shift_i(shift_q), .out_o(v_per_major_d), .saturated_o(normalise_saturated[11]));
+  end else begin : gen_no_major_planes
+    logic unused_axis_major;
+    assign unused_axis_major = ^q_axis_major;
+    assign q_per_major_d = '0;
+    assign u_per_major_d = '0;
+    assign v_per_major_d = '0;
+    assign normalise_saturated[11:9] = '0;
+  end
 
   // Walk geometry and the line range: kappa = m ((minor - minor_ref) 2^g_frac
   // - g (major - major_ref)) at each vertex; pixel lines lie within 1/2 of it.
@@ -692,8 +785,8 @@ module setup_engine #(
                                 : (PixelBits+1)'(box_y_hi_q) - (PixelBits+1)'(box_y_lo_q) + 1;
       minor_lo_d = x_major_q ? box_y_lo_q : box_x_lo_q;
       minor_hi_d = x_major_q ? box_y_hi_q : box_x_hi_q;
-      kappa_lo = '0;
-      kappa_hi = '0;
+    end
+    if (stage_d && HasLines) begin
       for (int i = 0; i < 3; i++) begin
         vertex_major = (x_major_q ? (DiffBits+1)'(x_q[i]) - (DiffBits+1)'(x_q[0]) - (DiffBits+1)'(ref_x_q)
                                   : (DiffBits+1)'(y_q[i]) - (DiffBits+1)'(y_q[0]) - (DiffBits+1)'(ref_y_q));
@@ -791,8 +884,8 @@ module setup_engine #(
   logic                              no_lines_q;
   logic signed [PlaneRefQBits-1:0]   q_at_ref_q;
   logic signed [PlaneRefUvBits-1:0]  u_at_ref_q, v_at_ref_q;
-  logic signed [PlaneStepQBits-1:0]  q_per_line_q;
-  logic signed [PlaneStepUvBits-1:0] u_per_line_q, v_per_line_q;
+  logic signed [PlaneStepQBits-1:0]  q_per_line_q, q_per_major_q;
+  logic signed [PlaneStepUvBits-1:0] u_per_line_q, v_per_line_q, u_per_major_q, v_per_major_q;
   logic signed [StepUvBits-1:0]      step_u_q, step_v_q;
   logic [1:0]                        edge_kind_q [3];
   logic signed [EdgeBoundBits-1:0]   edge_bound_q [3];
@@ -817,6 +910,9 @@ module setup_engine #(
       q_per_line_q <= q_per_line_d;
       u_per_line_q <= u_per_line_d;
       v_per_line_q <= v_per_line_d;
+      q_per_major_q <= q_per_major_d;
+      u_per_major_q <= u_per_major_d;
+      v_per_major_q <= v_per_major_d;
       step_u_q <= step_u_d;
       step_v_q <= step_v_d;
       for (int i = 0; i < 3; i++) edge_kind_q[i] <= edge_kind_d[i];
@@ -838,6 +934,24 @@ module setup_engine #(
   assign no_lines_o = no_lines_q;
   assign pixel_line_lo_o = line_lo_q;
   assign pixel_line_hi_o = line_hi_q;
+  assign q_at_ref_o = q_at_ref_q;
+  assign u_vertex_o = {u_q[2], u_q[1], u_q[0]};
+  assign v_vertex_o = {v_q[2], v_q[1], v_q[0]};
+  assign dx1_o = dx1_q;
+  assign dy1_o = dy1_q;
+  assign dx2_o = dx2_q;
+  assign dy2_o = dy2_q;
+  assign det_o = det_q;
+  assign ref_x_o = ref_x_q;
+  assign ref_y_o = ref_y_q;
+  assign u_at_ref_o = u_at_ref_q;
+  assign v_at_ref_o = v_at_ref_q;
+  assign q_per_major_o = q_per_major_q;
+  assign u_per_major_o = u_per_major_q;
+  assign v_per_major_o = v_per_major_q;
+  assign q_per_minor_o = q_per_line_q;
+  assign u_per_minor_o = u_per_line_q;
+  assign v_per_minor_o = v_per_line_q;
   always_comb begin
     flags_o = '0;
     flags_o[FlagDepthRange] = depth_range_q;
@@ -852,137 +966,141 @@ module setup_engine #(
   end
 
   // ---------------------------------------------------------------- stage E and fill
-  // q, U, V on the line being issued: loaded with the first line of the first
-  // band (line_lo - guard), stepped by one line per issue; after a band's last
-  // line it steps back 2 guard lines to the next band's first.
-  logic signed [LineBits-1:0]      first_line;
-  logic signed [FillQBits-1:0]     q_line_d, q_line_q;
-  logic signed [FillUvBits-1:0]    u_line_d, u_line_q, v_line_d, v_line_q;
+  if (HasLines) begin : gen_fill
+    // q, U, V on the line being issued: loaded with the first line of the first
+    // band (line_lo - guard), stepped by one line per issue; after a band's last
+    // line it steps back 2 guard lines to the next band's first.
+    logic signed [LineBits-1:0]      first_line;
+    logic signed [FillQBits-1:0]     q_line_d, q_line_q;
+    logic signed [FillUvBits-1:0]    u_line_d, u_line_q, v_line_d, v_line_q;
 
-  always_comb begin
-    first_line = line_lo_q - LineBits'($signed({1'b0, guard_q}));
-    q_line_d = q_line_q;
-    u_line_d = u_line_q;
-    v_line_d = v_line_q;
-    if (stage_e) begin
-      q_line_d = FillQBits'(q_at_ref_q) + FillQBits'(first_line) * FillQBits'(q_per_line_q);
-      u_line_d = FillUvBits'(u_at_ref_q) + FillUvBits'(first_line) * FillUvBits'(u_per_line_q);
-      v_line_d = FillUvBits'(v_at_ref_q) + FillUvBits'(first_line) * FillUvBits'(v_per_line_q);
-    end else if (fill_valid_i) begin
-      if (fill_last_i && guard_q) begin
-        q_line_d = q_line_q - FillQBits'(q_per_line_q);
-        u_line_d = u_line_q - FillUvBits'(u_per_line_q);
-        v_line_d = v_line_q - FillUvBits'(v_per_line_q);
-      end else begin
-        q_line_d = q_line_q + FillQBits'(q_per_line_q);
-        u_line_d = u_line_q + FillUvBits'(u_per_line_q);
-        v_line_d = v_line_q + FillUvBits'(v_per_line_q);
+    always_comb begin
+      first_line = line_lo_q - LineBits'($signed({1'b0, guard_q}));
+      q_line_d = q_line_q;
+      u_line_d = u_line_q;
+      v_line_d = v_line_q;
+      if (stage_e) begin
+        q_line_d = FillQBits'(q_at_ref_q) + FillQBits'(first_line) * FillQBits'(q_per_line_q);
+        u_line_d = FillUvBits'(u_at_ref_q) + FillUvBits'(first_line) * FillUvBits'(u_per_line_q);
+        v_line_d = FillUvBits'(v_at_ref_q) + FillUvBits'(first_line) * FillUvBits'(v_per_line_q);
+      end else if (fill_valid_i) begin
+        if (fill_last_i && guard_q) begin
+          q_line_d = q_line_q - FillQBits'(q_per_line_q);
+          u_line_d = u_line_q - FillUvBits'(u_per_line_q);
+          v_line_d = v_line_q - FillUvBits'(v_per_line_q);
+        end else begin
+          q_line_d = q_line_q + FillQBits'(q_per_line_q);
+          u_line_d = u_line_q + FillUvBits'(u_per_line_q);
+          v_line_d = v_line_q + FillUvBits'(v_per_line_q);
+        end
       end
     end
-  end
 
-  always_ff @(posedge clk_i) begin
-    q_line_q <= q_line_d;
-    u_line_q <= u_line_d;
-    v_line_q <= v_line_d;
-  end
-
-  // Issue: q <= 0 raises depth_range and uses q = 1; e = bitlen(q) - 1; the
-  // mantissa keeps RecipBits fraction bits, truncated.
-  localparam int TagBits = AddrBits + 1 + ExponentBits + 2 * FillUvBits;
-  logic                       depth_out;
-  logic signed [FillQBits-1:0] q_positive;
-  logic [ExponentBits-1:0]    exponent;
-  logic [RecipBits:0]         mantissa;
-  logic [TagBits-1:0]         issue_tag, result_tag;
-  logic                       result_valid;
-  logic [RecipBits:0]         recip;
-
-  always_comb begin
-    depth_out = '0;
-    q_positive = '0;
-    exponent = '0;
-    mantissa = '0;
-    issue_tag = '0;
-    if (fill_valid_i) begin
-      depth_out = q_line_q <= 0;
-      q_positive = depth_out ? FillQBits'(1) : q_line_q;
-      exponent = '0;
-      for (int i = 0; i < FillQBits - 1; i++) if (q_positive[i]) exponent = ExponentBits'(i);
-      if (32'(exponent) >= RecipBits) mantissa = (RecipBits+1)'(q_positive >> (exponent - ExponentBits'(RecipBits)));
-      else mantissa = (RecipBits+1)'(q_positive << (ExponentBits'(RecipBits) - exponent));
-      issue_tag = {fill_addr_i, depth_out, exponent, u_line_q, v_line_q};
+    always_ff @(posedge clk_i) begin
+      q_line_q <= q_line_d;
+      u_line_q <= u_line_d;
+      v_line_q <= v_line_d;
     end
-  end
 
-  reciprocal #(
-    .RecipBits(RecipBits), .Latency(`CD_RECIP_LATENCY), .TagBits(TagBits)
-  ) u_reciprocal (
-    .clk_i, .rst_ni,
-    .valid_i   (fill_valid_i),
-    .mantissa_i(mantissa),
-    .tag_i     (issue_tag),
-    .valid_o   (result_valid),
-    .recip_o   (recip),
-    .tag_o     (result_tag)
-  );
+    // Issue: q <= 0 raises depth_range and uses q = 1; e = bitlen(q) - 1; the
+    // mantissa keeps RecipBits fraction bits, truncated.
+    localparam int TagBits = AddrBits + 1 + ExponentBits + 2 * FillUvBits;
+    logic                       depth_out;
+    logic [ExponentBits-1:0]    exponent;
+    logic [RecipBits:0]         mantissa;
+    logic [TagBits-1:0]         issue_tag, result_tag;
+    logic                       result_valid;
+    logic [RecipBits:0]         recip;
 
-  // Result: T = U_k R, S = SU R, read with RecipBits + e + uv_in_frac fraction
-  // bits and narrowed to their formats (round to nearest, saturate, flag).
-  logic [AddrBits-1:0]           result_addr;
-  logic                          result_depth_out;
-  logic [ExponentBits-1:0]       result_exponent;
-  logic signed [FillUvBits-1:0]  result_u, result_v;
-  logic signed [ProductTBits-1:0] product_tu, product_tv;
-  logic signed [ProductSBits-1:0] product_su, product_sv;
-  logic signed [ProductShiftBits-1:0] shift_t, shift_s;
-  logic signed [TBits-1:0]       t_u, t_v;
-  logic signed [SBits-1:0]       s_u, s_v;
-  logic [3:0]                    entry_saturated;
+    reciprocal_operand #(
+      .QBits(FillQBits), .RecipBits(RecipBits), .ExponentBits(ExponentBits)
+    ) u_operand (
+      .enable_i   (fill_valid_i),
+      .q_i        (q_line_q),
+      .depth_out_o(depth_out),
+      .exponent_o (exponent),
+      .mantissa_o (mantissa)
+    );
+    assign issue_tag = fill_valid_i ? {fill_addr_i, depth_out, exponent, u_line_q, v_line_q} : '0;
 
-  always_comb begin
-    result_addr = '0;
-    result_depth_out = '0;
-    result_exponent = '0;
-    result_u = '0;
-    result_v = '0;
-    product_tu = '0;
-    product_tv = '0;
-    product_su = '0;
-    product_sv = '0;
-    shift_t = '0;
-    shift_s = '0;
-    if (result_valid) begin
-      {result_addr, result_depth_out, result_exponent, result_u, result_v} = result_tag;
-      product_tu = ProductTBits'(result_u) * ProductTBits'($signed({1'b0, recip}));
-      product_tv = ProductTBits'(result_v) * ProductTBits'($signed({1'b0, recip}));
-      product_su = ProductSBits'(step_u_q) * ProductSBits'($signed({1'b0, recip}));
-      product_sv = ProductSBits'(step_v_q) * ProductSBits'($signed({1'b0, recip}));
-      shift_t = ProductShiftBits'($signed({1'b0, result_exponent})) + ProductShiftBits'(RecipBits + UvInFrac - TFrac);
-      shift_s = ProductShiftBits'($signed({1'b0, result_exponent})) + ProductShiftBits'(RecipBits + UvInFrac - SFrac);
+    reciprocal #(
+      .RecipBits(RecipBits), .Latency(`CD_RECIP_LATENCY), .TagBits(TagBits)
+    ) u_reciprocal (
+      .clk_i, .rst_ni,
+      .advance_i (1'b1),
+      .valid_i   (fill_valid_i),
+      .mantissa_i(mantissa),
+      .tag_i     (issue_tag),
+      .valid_o   (result_valid),
+      .recip_o   (recip),
+      .tag_o     (result_tag)
+    );
+
+    // Result: T = U_k R, S = SU R, read with RecipBits + e + uv_in_frac fraction
+    // bits and narrowed to their formats (round to nearest, saturate, flag).
+    logic [AddrBits-1:0]           result_addr;
+    logic                          result_depth_out;
+    logic [ExponentBits-1:0]       result_exponent;
+    logic signed [FillUvBits-1:0]  result_u, result_v;
+    logic signed [ProductTBits-1:0] product_tu, product_tv;
+    logic signed [ProductSBits-1:0] product_su, product_sv;
+    logic signed [ProductShiftBits-1:0] shift_t, shift_s;
+    logic signed [TBits-1:0]       t_u, t_v;
+    logic signed [SBits-1:0]       s_u, s_v;
+    logic [3:0]                    entry_saturated;
+
+    always_comb begin
+      result_addr = '0;
+      result_depth_out = '0;
+      result_exponent = '0;
+      result_u = '0;
+      result_v = '0;
+      product_tu = '0;
+      product_tv = '0;
+      product_su = '0;
+      product_sv = '0;
+      shift_t = '0;
+      shift_s = '0;
+      if (result_valid) begin
+        {result_addr, result_depth_out, result_exponent, result_u, result_v} = result_tag;
+        product_tu = ProductTBits'(result_u) * ProductTBits'($signed({1'b0, recip}));
+        product_tv = ProductTBits'(result_v) * ProductTBits'($signed({1'b0, recip}));
+        product_su = ProductSBits'(step_u_q) * ProductSBits'($signed({1'b0, recip}));
+        product_sv = ProductSBits'(step_v_q) * ProductSBits'($signed({1'b0, recip}));
+        shift_t = ProductShiftBits'($signed({1'b0, result_exponent})) + ProductShiftBits'(RecipBits + UvInFrac - TFrac);
+        shift_s = ProductShiftBits'($signed({1'b0, result_exponent})) + ProductShiftBits'(RecipBits + UvInFrac - SFrac);
+      end
     end
-  end
 
-  shift_round #(.InBits(ProductTBits), .OutBits(TBits), .ShiftBits(ProductShiftBits), .MaxLeft(MaxTLeft))
-    u_narrow_tu (.enable_i(result_valid), .in_i(product_tu), .shift_i(shift_t), .out_o(t_u), .saturated_o(entry_saturated[0]));
-  shift_round #(.InBits(ProductTBits), .OutBits(TBits), .ShiftBits(ProductShiftBits), .MaxLeft(MaxTLeft))
-    u_narrow_tv (.enable_i(result_valid), .in_i(product_tv), .shift_i(shift_t), .out_o(t_v), .saturated_o(entry_saturated[1]));
-  shift_round #(.InBits(ProductSBits), .OutBits(SBits), .ShiftBits(ProductShiftBits), .MaxLeft(MaxSLeft))
-    u_narrow_su (.enable_i(result_valid), .in_i(product_su), .shift_i(shift_s), .out_o(s_u), .saturated_o(entry_saturated[2]));
-  shift_round #(.InBits(ProductSBits), .OutBits(SBits), .ShiftBits(ProductShiftBits), .MaxLeft(MaxSLeft))
-    u_narrow_sv (.enable_i(result_valid), .in_i(product_sv), .shift_i(shift_s), .out_o(s_v), .saturated_o(entry_saturated[3]));
+    shift_round #(.InBits(ProductTBits), .OutBits(TBits), .ShiftBits(ProductShiftBits), .MaxLeft(MaxTLeft))
+      u_narrow_tu (.enable_i(result_valid), .in_i(product_tu), .shift_i(shift_t), .out_o(t_u), .saturated_o(entry_saturated[0]));
+    shift_round #(.InBits(ProductTBits), .OutBits(TBits), .ShiftBits(ProductShiftBits), .MaxLeft(MaxTLeft))
+      u_narrow_tv (.enable_i(result_valid), .in_i(product_tv), .shift_i(shift_t), .out_o(t_v), .saturated_o(entry_saturated[1]));
+    shift_round #(.InBits(ProductSBits), .OutBits(SBits), .ShiftBits(ProductShiftBits), .MaxLeft(MaxSLeft))
+      u_narrow_su (.enable_i(result_valid), .in_i(product_su), .shift_i(shift_s), .out_o(s_u), .saturated_o(entry_saturated[2]));
+    shift_round #(.InBits(ProductSBits), .OutBits(SBits), .ShiftBits(ProductShiftBits), .MaxLeft(MaxSLeft))
+      u_narrow_sv (.enable_i(result_valid), .in_i(product_sv), .shift_i(shift_s), .out_o(s_v), .saturated_o(entry_saturated[3]));
 
-  always_comb begin
-    write_entry_o = '0;
-    write_entry_o[`CD_WORD_TU_LSB +: TBits] = t_u;
-    write_entry_o[`CD_WORD_TV_LSB +: TBits] = t_v;
-    write_entry_o[`CD_WORD_SU_LSB +: SBits] = s_u;
-    write_entry_o[`CD_WORD_SV_LSB +: SBits] = s_v;
-    write_entry_o[`CD_WORD_SATURATED_BIT] = |entry_saturated;
-    write_entry_o[`CD_WORD_DEPTH_RANGE_BIT] = result_depth_out;
+    always_comb begin
+      write_entry_o = '0;
+      write_entry_o[`CD_WORD_TU_LSB +: TBits] = t_u;
+      write_entry_o[`CD_WORD_TV_LSB +: TBits] = t_v;
+      write_entry_o[`CD_WORD_SU_LSB +: SBits] = s_u;
+      write_entry_o[`CD_WORD_SV_LSB +: SBits] = s_v;
+      write_entry_o[`CD_WORD_SATURATED_BIT] = |entry_saturated;
+      write_entry_o[`CD_WORD_DEPTH_RANGE_BIT] = result_depth_out;
+    end
+    assign write_valid_o = result_valid;
+    assign write_addr_o = result_addr;
+  end else begin : gen_no_fill
+    logic unused_fill;
+    assign unused_fill = ^{fill_valid_i, fill_last_i, fill_addr_i, q_at_ref_q, u_at_ref_q, v_at_ref_q,
+                           q_per_line_q, u_per_line_q, v_per_line_q, step_u_q, step_v_q, line_lo_q,
+                           guard_q};
+    assign write_valid_o = 1'b0;
+    assign write_addr_o = '0;
+    assign write_entry_o = '0;
   end
-  assign write_valid_o = result_valid;
-  assign write_addr_o = result_addr;
 
 `ifndef SYNTHESIS
   // Derived widths hold: the normalised planes never leave their formats, and

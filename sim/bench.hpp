@@ -64,6 +64,8 @@ class Bench : public sc_core::sc_module {
     dut.tri_u2_i(tri_u[2]); dut.tri_v2_i(tri_v[2]);
     dut.viewport_width_i(viewport_width);
     dut.viewport_height_i(viewport_height);
+    dut.kind_i(kind);
+    dut.segment_log2_i(segment_log2);
     dut.density_log2_i(density_log2);
     dut.correction_i(correction);
     dut.frag_valid_o(frag_valid);
@@ -205,6 +207,8 @@ class Bench : public sc_core::sc_module {
       }
       viewport_width.write(static_cast<uint32_t>(job.viewport_width));
       viewport_height.write(static_cast<uint32_t>(job.viewport_height));
+      kind.write(static_cast<uint32_t>(job.design->kind));
+      segment_log2.write(job.design->subdivision == 16 ? 4u : job.design->subdivision == 8 ? 3u : 0u);
       density_log2.write(job.design->density == 4 ? 2u : job.design->density == 2 ? 1u : 0u);
       correction.write(job.design->correction);
       tri_valid.write(true);
@@ -240,7 +244,7 @@ class Bench : public sc_core::sc_module {
 
   sc_core::sc_signal<bool> rst_n{"rst_n"}, tri_valid{"tri_valid"}, tri_ready{"tri_ready"};
   sc_core::sc_signal<uint32_t> tri_x[3], tri_y[3], tri_q[3], tri_u[3], tri_v[3];
-  sc_core::sc_signal<uint32_t> viewport_width, viewport_height, density_log2;
+  sc_core::sc_signal<uint32_t> viewport_width, viewport_height, kind, segment_log2, density_log2;
   sc_core::sc_signal<bool> correction, frag_valid, frag_ready, rec_valid, rec_ready;
   sc_core::sc_signal<uint32_t> frag_x, frag_y, frag_flags;
   sc_core::sc_signal<uint64_t> frag_u, frag_v, rec_cycles;

@@ -76,14 +76,14 @@ std::vector<const Design*> designs_for(const std::string& name) {
   std::vector<const Design*> out;
   if (name == "mix") {
     for (const Design& d : all_designs())
-      if (d.kind == Design::Kind::ConstantDepth) out.push_back(&d);
+      if (has_rtl(d)) out.push_back(&d);
     return out;
   }
   const Design& d = find_design(name);
-  if (d.kind != Design::Kind::ConstantDepth)
+  if (!has_rtl(d))
     throw std::invalid_argument(fmt::format(
-        "design '{}' has no RTL; the RTL implements cd-none, cd-linear, cd-dense2, cd-dense4, "
-        "cd-dense2-linear (or 'mix': each in turn)", name));
+        "design '{}' has no RTL yet; the RTL implements {} (or 'mix': each in turn)", name,
+        rtl_design_names()));
   out.push_back(&d);
   return out;
 }

@@ -258,12 +258,13 @@ TEST(UnitBehaviour, AffineSubdivisionStallsWhenSegmentsAreShorterThanTheDivider)
   const auto fragments = testing::run_unit(find_design("affine-sub8"), w, 8, 64, to_unit(s, w, 0), &r);
   const int64_t pixels = static_cast<int64_t>(fragments.size());
   ASSERT_GT(pixels, 30);
-  // Segments cover pixel steps 0..pixels-1 eight at a time; the last may be short
-  // and then stalls longer.
+  // Segments cover pixel steps 0..pixels-1 eight at a time (the last may be
+  // short). Each later segment's end point is issued when the segment before
+  // starts, 8 cycles before it is needed, whatever the later segment's own
+  // length: every segment after the first waits 12 - 8 cycles.
   const int64_t segments = (pixels - 1 + 7) / 8;
-  const int64_t last_run = (pixels - 1) - 8 * (segments - 1);
   ASSERT_GE(segments, 3);
-  const int64_t stalls = (segments - 2) * (12 - 8) + (12 - last_run);
+  const int64_t stalls = (segments - 1) * (12 - 8);
   EXPECT_EQ(r.cycles, kSetup + 1 + pixels + 12 + stalls);
 }
 

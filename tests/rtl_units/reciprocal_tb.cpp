@@ -50,13 +50,16 @@ uint64_t check_reciprocal(const Options& options, const std::string& name, int r
   uint64_t results = 0;
 
   // One cycle: present an operand (or a bubble), check what is due, clock.
-  const auto cycle = [&](bool valid, uint64_t mantissa, uint64_t tag) {
+  // Without advance (a stall) nothing moves: the same operand stays due and
+  // the one presented is not taken.
+  const auto cycle = [&](bool valid, uint64_t mantissa, uint64_t tag, bool advance = true) {
+    drive(dut.advance_i, advance);
     drive(dut.valid_i, valid);
     drive(dut.mantissa_i, mantissa);
     drive(dut.tag_i, tag);
     bench.settle();
     const Issue due = in_flight.front();
-    in_flight.pop_front();
+    if (advance) in_flight.pop_front();
     if (static_cast<bool>(dut.valid_o) != due.valid) {
       failures.report(due.valid ? format("cycle %" PRIu64 ": valid_o = 0, expected M = %s of cycle %" PRIu64,
                                          bench.cycle(), hex(due.mantissa).c_str(), due.cycle)
@@ -72,7 +75,7 @@ uint64_t check_reciprocal(const Options& options, const std::string& name, int r
                                hex(due.tag).c_str()));
       }
     }
-    in_flight.push_back({valid, mantissa, tag, bench.cycle()});
+    if (advance) in_flight.push_back({valid, mantissa, tag, bench.cycle()});
     bench.tick();
   };
   const auto random_tag = [&] { return rng() & mask(tag_bits); };
@@ -111,6 +114,12 @@ uint64_t check_reciprocal(const Options& options, const std::string& name, int r
     } else {
       cycle(false, rng() & mask(recip_bits + 1), random_tag());
     }
+  }
+
+  // Random stalls, with operands offered while stalled (they must not enter).
+  for (int i = 0; i < 4000; ++i) {
+    const bool advance = rng() % 3 != 0;
+    cycle(rng() % 4 != 0, random_mantissa(), random_tag(), advance);
   }
 
   // Reset with the pipeline full: valid_o falls at once and the operands are dropped.
