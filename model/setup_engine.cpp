@@ -81,6 +81,8 @@ Setup setup_engine(const UnitTriangle& t, const Design& design, const Widths& w,
   fits_or_throw(s.edges.det, dw.det_bits, "det");
   s.fill_q_bits = dw.fill_q_bits;
   s.fill_uv_bits = dw.fill_uv_bits;
+  s.pixel_q_bits = dw.pixel_q_bits;
+  s.pixel_uv_bits = dw.pixel_uv_bits;
   for (size_t i = 0; i < 3; ++i) fits_or_throw(s.edges.c[i], dw.edge_c_bits, "edge c");
 
   // Per-triangle normalisation of 1/w: align the three mantissas to the largest

@@ -55,6 +55,7 @@ struct Setup {
   std::array<EdgeTracker, 3> edge_trackers{};  // per edge, at the first column (major_lo)
   uint32_t flags = 0;
   int fill_q_bits = 127, fill_uv_bits = 127;  // the fill accumulators' widths (derived_widths)
+  int pixel_q_bits = 127, pixel_uv_bits = 127;  // the per-pixel plane accumulators' widths
 };
 
 Setup setup_engine(const UnitTriangle& triangle, const Design& design, const Widths& widths,
