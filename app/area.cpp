@@ -9,7 +9,9 @@
 #include <fstream>
 #include <functional>
 #include <iostream>
+#include <atomic>
 #include <map>
+#include <mutex>
 #include <regex>
 #include <sstream>
 #include <thread>
@@ -17,6 +19,8 @@
 #include "build_info.hpp"
 #include "cache_files.hpp"
 #include "derived_widths.hpp"
+#include "interrupt.hpp"
+#include "progress.hpp"
 
 namespace cdsim {
 
@@ -25,7 +29,7 @@ namespace fs = std::filesystem;
 namespace {
 
 // Bumped whenever the flow below changes, so that cached results are redone.
-constexpr const char* kFlowVersion = "area-flow-3";
+constexpr const char* kFlowVersion = "area-flow-4";
 
 int log2_of(int value) {
   int bits = 0;
@@ -164,13 +168,17 @@ AreaReport synthesise_area(const Design& design, const Widths& widths, const Are
   const bool has_divide = design.kind == Design::Kind::Divide;
   const bool has_affine = design.kind == Design::Kind::Affine && design.subdivision == 0;
   const bool has_affine_sub = design.kind == Design::Kind::Affine && design.subdivision != 0;
+  const bool has_kim_iter = design.kind == Design::Kind::Kim && !design.pipelined;
+  const bool has_kim_pipe = design.kind == Design::Kind::Kim && design.pipelined;
   const int segment_log2 = has_affine_sub ? log2_of(design.subdivision) : 4;
   const int density_log2 = log2_of(design.density);
   const int has_correction = design.correction ? 1 : 0;
   const std::string parameters = fmt::format(
       "-set MaxDensityLog2 {} -set HasCorrection {} -set HasTable {:d} -set HasDivide {:d} "
-      "-set HasAffine {:d} -set HasAffineSub {:d} -set MaxSegmentLog2 {} -set HasObservation 0",
-      density_log2, has_correction, has_table, has_divide, has_affine, has_affine_sub, segment_log2);
+      "-set HasAffine {:d} -set HasAffineSub {:d} -set MaxSegmentLog2 {} -set HasKimIter {:d} "
+      "-set HasKimPipe {:d} -set HasObservation 0",
+      density_log2, has_correction, has_table, has_divide, has_affine, has_affine_sub, segment_log2,
+      has_kim_iter, has_kim_pipe);
 
   // Every RTL source, in name order, so that the hash is stable.
   const fs::path rtl_dir = kRtlDir;
@@ -239,8 +247,9 @@ AreaReport synthesise_area(const Design& design, const Widths& widths, const Are
         fmt::arg("inc", include), fmt::arg("rtl", rtl_dir.string()), fmt::arg("d", flop_lines),
         fmt::arg("w", derived.word_bits), fmt::arg("L", L)));
 
-    std::cerr << fmt::format("area: synthesising {} with yosys onto {} (log {})\n", design.name,
-                             fs::path(L).filename().string(), report.log_path);
+    if (!options.quiet)
+      std::cerr << fmt::format("area: synthesising {} with yosys onto {} (log {})\n", design.name,
+                               fs::path(L).filename().string(), report.log_path);
     const auto start = std::chrono::steady_clock::now();
     int unit_status = 0, table_status = 0;
     std::thread table([&] {
@@ -267,7 +276,8 @@ AreaReport synthesise_area(const Design& design, const Widths& widths, const Are
         {"setup_engine", "setup engine"},     {"column_walker", "column walker"},
         {"correction_adder", "correction adder"}, {"plane_accumulator", "plane accumulators"},
         {"pixel_divide", "pixel multiply"},   {"affine_setup", "affine setup"},
-        {"shift_round", "output rounding"},   {"affine_sub_datapath", "subdivision datapath"}};
+        {"shift_round", "output rounding"},   {"affine_sub_datapath", "subdivision datapath"},
+        {"kim_datapath", "Kim datapath"}};
     std::vector<std::string> order;
     std::map<std::string, Subtree> totals;
     const auto add = [&](const std::string& name, double area, int64_t flops) {
@@ -292,7 +302,7 @@ AreaReport synthesise_area(const Design& design, const Widths& widths, const Are
       }
       add(it->second, static_cast<double>(count) * t.area, count * t.flops);
     }
-    add("reciprocal", recip.area, recip.flops);
+    if (recip.area > 0) add("reciprocal", recip.area, recip.flops);
     const auto& control = unit.at(top);
     add("control", control.own_area, control.own_flops);
     nlohmann::json blocks = nlohmann::json::array();
@@ -313,6 +323,7 @@ AreaReport synthesise_area(const Design& design, const Widths& widths, const Are
   }
   report.synthesis_seconds = synthesised.at("seconds").get<double>();
   for (const auto& b : synthesised.at("blocks")) {
+    if (b.at("area_um2").get<double>() == 0 && b.at("flops").get<int64_t>() == 0) continue;  // absent
     BlockArea block;
     block.name = b.at("name").get<std::string>();
     block.area_um2 = b.at("area_um2").get<double>();
@@ -350,6 +361,97 @@ nlohmann::json area_json(const AreaReport& r, const AreaOptions& options) {
           {"synthesis_seconds", r.synthesis_seconds},
           {"liberty", options.liberty},
           {"build", kBuildRevision}};
+}
+
+double nand2_area_um2(const AreaOptions& options) {
+  return liberty_cell_area(options.liberty, "NAND2X1");
+}
+
+nlohmann::json area_summary_json(const AreaReport& r) {
+  double nand2_eq = 0;
+  for (const BlockArea& b : r.blocks) nand2_eq += b.nand2_eq;
+  return {{"logic_area_um2", r.logic_area_um2}, {"nand2_eq", nand2_eq},
+          {"sram_bits", r.sram_bits},           {"sram_area_um2", r.sram_area_um2},
+          {"flop_table_area_um2", r.flop_table_area_um2}, {"total_area_um2", r.total_area_um2}};
+}
+
+std::string area_table(const std::vector<AreaReport>& reports, const AreaOptions& options) {
+  std::string out = fmt::format(
+      "area: Yosys onto {} (NAND2X1 = {} um^2), SRAM at {} um^2 per bit / {} efficiency (docs/area.md)\n",
+      fs::path(options.liberty).filename().string(), nand2_area_um2(options), options.sram_cell_um2,
+      options.sram_efficiency);
+  out += fmt::format("{:<17} {:>13} {:>10} {:>10} {:>12} {:>13}\n", "design", "logic um^2", "NAND2-eq",
+                     "SRAM bits", "SRAM um^2", "total um^2");
+  for (const AreaReport& r : reports) {
+    const nlohmann::json a = area_summary_json(r);
+    out += fmt::format("{:<17} {:>13.0f} {:>10.0f} {:>10} {:>12.0f} {:>13.0f}\n", r.design,
+                       r.logic_area_um2, a.at("nand2_eq").get<double>(), r.sram_bits, r.sram_area_um2,
+                       r.total_area_um2);
+  }
+  return out;
+}
+
+std::vector<AreaReport> synthesise_areas(const std::vector<AreaJob>& list, const AreaOptions& options,
+                                         unsigned threads) {
+  // Distinct configurations, in first-seen order.
+  std::map<std::string, size_t> index_of;
+  std::vector<size_t> slot(list.size());
+  std::vector<const AreaJob*> distinct;
+  for (size_t i = 0; i < list.size(); ++i) {
+    const std::string key = list[i].design.name + " " + describe(list[i].widths);
+    const auto [it, added] = index_of.emplace(key, distinct.size());
+    if (added) distinct.push_back(&list[i]);
+    slot[i] = it->second;
+  }
+  AreaOptions quiet = options;
+  quiet.quiet = true;
+  const unsigned workers_wanted =
+      threads > 0 ? threads : std::max(1u, std::thread::hardware_concurrency());
+  std::vector<AreaReport> reports(distinct.size());
+  std::atomic<size_t> next{0}, done{0};
+  std::atomic<unsigned> running{0};
+  std::exception_ptr failure;
+  std::mutex failure_mutex;
+  const auto start = std::chrono::steady_clock::now();
+  const auto elapsed = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  const unsigned workers_count = std::min<unsigned>(workers_wanted, unsigned(distinct.size()));
+  running = workers_count;
+  std::vector<std::thread> workers;
+  for (unsigned t = 0; t < workers_count; ++t)
+    workers.emplace_back([&] {
+      for (size_t i; (i = next++) < distinct.size();) {
+        try {
+          reports[i] = synthesise_area(distinct[i]->design, distinct[i]->widths, quiet);
+        } catch (...) {
+          std::lock_guard<std::mutex> guard(failure_mutex);
+          if (!failure) failure = std::current_exception();
+          next = distinct.size();
+        }
+        ++done;
+      }
+      --running;
+    });
+  Progress progress(distinct.size(), "area", "syntheses (Yosys, cached)");
+  bool shown = false;
+  for (int tick = 0; running > 0; ++tick) {
+    if (interrupted()) next = distinct.size();
+    // Only a batch that really synthesises shows progress; a cached one is instant.
+    if (tick >= 10 && tick % 10 == 0) {
+      progress.update(done, elapsed());
+      shown = true;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  for (auto& w : workers) w.join();
+  throw_if_interrupted();
+  if (failure) std::rethrow_exception(failure);
+  if (shown) progress.update(done, elapsed(), true);
+  std::vector<AreaReport> out;
+  out.reserve(list.size());
+  for (size_t i = 0; i < list.size(); ++i) out.push_back(reports[slot[i]]);
+  return out;
 }
 
 CLI::App* add_area_command(CLI::App& app, AreaOptions& options) {

@@ -45,12 +45,33 @@ struct AreaOptions {
   std::string liberty = "/usr/share/qflow/tech/osu018/osu018_stdcells.lib";
   double sram_cell_um2 = 6.0;    // docs/area.md: 600 lambda^2, lambda = 0.10 um (osu018's SCMOS rules)
   double sram_efficiency = 0.65; // cell array / macro area
+  bool quiet = false;            // no "synthesising" line (batches show a progress bar instead)
+};
+
+// One configuration to synthesise.
+struct AreaJob {
+  Design design;
+  Widths widths;
 };
 
 // Synthesises (or reads from the cache). Throws std::runtime_error with Yosys's
 // own message and the log's path when synthesis fails or a check fails.
 AreaReport synthesise_area(const Design& design, const Widths& widths, const AreaOptions& options);
 nlohmann::json area_json(const AreaReport& report, const AreaOptions& options);
+
+// Synthesises each distinct configuration of `list` once (the cache makes a
+// repeated one free), `threads` Yosys runs at a time (0: all cores), with a
+// progress bar on stderr. The reports come back in the order of `list`.
+// Stops at the first failure, or on SIGINT/SIGTERM, and throws.
+std::vector<AreaReport> synthesise_areas(const std::vector<AreaJob>& list,
+                                         const AreaOptions& options, unsigned threads);
+
+// The keys of the per-design area summary `run` and `sweep` print and write:
+// logic um^2, NAND2-eq, SRAM bits, SRAM um^2, total um^2.
+nlohmann::json area_summary_json(const AreaReport& report);
+double nand2_area_um2(const AreaOptions& options);
+// The readable table of those keys, one line per report.
+std::string area_table(const std::vector<AreaReport>& reports, const AreaOptions& options);
 
 CLI::App* add_area_command(CLI::App& app, AreaOptions& options);
 int run_area_command(const AreaOptions& options);

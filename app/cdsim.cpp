@@ -31,7 +31,8 @@ namespace {
 
 using namespace cdsim;
 
-int run_command(const CommonOptions& options, const std::string& json_path, bool show_worst) {
+int run_command(const CommonOptions& options, const std::string& json_path, bool show_worst,
+                bool with_area) {
   const Widths widths = widths_from(options);
   const std::vector<Design> designs = designs_from(options.designs);
   if (!json_path.empty()) check_output_folder("--json", json_path);
@@ -44,8 +45,24 @@ int run_command(const CommonOptions& options, const std::string& json_path, bool
   }
   std::cout << results_table(results, widths);
   if (show_worst) std::cout << worst_pixels(results, scene.scene, widths);
+  nlohmann::json json = results_json(scene.scene, widths, results);
+  if (with_area) {
+    const AreaOptions area_options;
+    std::vector<AreaJob> jobs;
+    for (const Design& d : designs)
+      if (has_rtl(d)) jobs.push_back({d, widths});
+    std::fflush(stdout);
+    const std::vector<AreaReport> areas = synthesise_areas(jobs, area_options, 0);
+    std::cout << '\n' << area_table(areas, area_options);
+    std::string missing;
+    for (const Design& d : designs)
+      if (!has_rtl(d)) missing += (missing.empty() ? "" : ", ") + d.name;
+    if (!missing.empty()) std::cout << "no RTL, so no area: " << missing << '\n';
+    for (size_t i = 0, a = 0; i < designs.size(); ++i)
+      json["designs"][i]["area"] = has_rtl(designs[i]) ? area_json(areas[a++], area_options) : nlohmann::json();
+  }
   if (!json_path.empty()) {
-    write_file_atomic(json_path, results_json(scene.scene, widths, results).dump(2) + '\n');
+    write_file_atomic(json_path, json.dump(2) + '\n');
     std::cout << "wrote " << json_path << '\n';
   }
   return 0;
@@ -107,6 +124,7 @@ int dispatch(Cli& cli) {
   if (*cli.render_command) return run_render_command(cli.render);
   if (*cli.size_command) return run_size_command(cli.size);
   if (*cli.area_command) return run_area_command(cli.area);
+  if (*cli.choose_command) return run_choose_command(cli.choose);
   if (*cli.hard_cases_command) {
     for (const HardCase& c : hard_cases()) fmt::print("hard:{:<15} {}\n", c.name, c.expected);
     return 0;
@@ -115,7 +133,7 @@ int dispatch(Cli& cli) {
     for (const Design& d : all_designs()) fmt::print("{:<17} {}\n", d.name, d.summary);
     return 0;
   }
-  return run_command(cli.run, cli.json_path, cli.show_worst);
+  return run_command(cli.run, cli.json_path, cli.show_worst, cli.run_area);
 }
 
 // What was printed must have reached stdout: a full disk or a closed file is

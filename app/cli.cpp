@@ -13,6 +13,9 @@ std::unique_ptr<Cli> make_cli() {
   add_common(cli->run_command, cli->run);
   cli->run_command->add_option("--json", cli->json_path, "also write the results as JSON to this file");
   cli->run_command->add_flag("--worst", cli->show_worst, "print each design's worst pixel");
+  cli->run_command->add_flag("--area", cli->run_area,
+                             "also synthesise each design at these widths (cdsim area, cached; "
+                             "all cores) and report its area");
 
   cli->bench_command = app.add_subcommand("bench", "model throughput per design, in M pixels/s");
   add_common(cli->bench_command, cli->bench);
@@ -36,6 +39,7 @@ std::unique_ptr<Cli> make_cli() {
   cli->render_command = add_render_command(app, cli->render);
   cli->size_command = add_size_command(app, cli->size);
   cli->area_command = add_area_command(app, cli->area);
+  cli->choose_command = add_choose_command(app, cli->choose);
 
   cli::make_strict(app);
   return cli;

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "area.hpp"
+#include "choose.hpp"
 #include "common.hpp"
 #include "regress.hpp"
 #include "render.hpp"
@@ -23,6 +24,7 @@ struct Cli {
   CommonOptions run, bench, widths;
   std::string json_path;       // run --json
   bool show_worst = false;     // run --worst
+  bool run_area = false;       // run --area
   double bench_seconds = 1.0;  // bench --seconds
   std::string sv_path;         // widths --sv
   rtl::RegressOptions regress;
@@ -30,11 +32,12 @@ struct Cli {
   RenderOptions render;
   SizeOptions size;
   AreaOptions area;
+  ChooseOptions choose;
   // The subcommands; none given means run.
   CLI::App *run_command = nullptr, *bench_command = nullptr, *widths_command = nullptr,
            *regress_command = nullptr, *sweep_command = nullptr, *designs_command = nullptr,
            *hard_cases_command = nullptr, *render_command = nullptr, *size_command = nullptr,
-           *area_command = nullptr;
+           *area_command = nullptr, *choose_command = nullptr;
 };
 
 // Builds the whole command line. The options refer into the Cli, which

@@ -42,7 +42,7 @@ CLI::App* add_regress_command(CLI::App& app, RegressOptions& options) {
                   "folder of the RTL verilated for --set widths (default $XDG_CACHE_HOME/cdsim/rtl "
                   "or ~/.cache/cdsim/rtl)");
   cmd->add_option("--design", options.design,
-                  "a design with RTL (see 'cdsim designs'), or mix (each in turn)")
+                  "a design (see 'cdsim designs'), a comma-separated list, or mix (all eleven in turn)")
       ->capture_default_str();
   cmd->add_option("--only", options.only, "run only triangle N of the source, from 0 (to chase a mismatch)")
       ->check(cli::integer_in(0, std::numeric_limits<int64_t>::max()));

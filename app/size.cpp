@@ -2,12 +2,14 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <limits>
 #include <stdexcept>
 
 #include "cli_checks.hpp"
+#include "interrupt.hpp"
 #include "regress.hpp"
 #include "report.hpp"
 
@@ -35,13 +37,16 @@ std::vector<std::string> sized_parameters(const Design& d) {
   return {};
 }
 
-// Wide but valid starting widths (the walker's accumulator must fit 64 bits).
-Widths widest(Widths w) {
+// Wide but valid starting widths (the walker's accumulator must fit 64 bits)
+// for the widths sizing changes; the others stay as the user set them, so
+// that a design's result names only what its hardware depends on.
+Widths widest(Widths w, const Design& design) {
+  const std::vector<std::string> sized = sized_parameters(design);
   for (const auto& [name, value] : std::vector<std::pair<std::string, int>>{
            {"q_bits", 32}, {"plane_bits", 48}, {"g_frac", 30}, {"recip_bits", 32}, {"t_int", 20},
            {"t_frac", 24}, {"s_int", 20}, {"s_frac", 24}, {"d_frac", 24}, {"kim_frac", 16}})
-    set_param(w, name, value);
-  w.table_depth = 65536 / 4;  // no banding while sizing widths
+    if (std::find(sized.begin(), sized.end(), name) != sized.end()) set_param(w, name, value);
+  if (design.kind == Design::Kind::ConstantDepth) w.table_depth = 65536 / 4;  // no banding while sizing
   return w;
 }
 
@@ -52,6 +57,71 @@ const ParamInfo& info(const std::string& name) {
 }
 
 }  // namespace
+
+double target_measure(const DesignResult& r, const ErrorTarget& target) {
+  if (target.metric == "footprint") return r.error.footprint_max;
+  if (target.statistic == "p99") return r.error.p99;
+  if (target.statistic == "mean") return r.error.mean;
+  return r.error.max;
+}
+
+Sizing size_design(const Design& design, const std::vector<const PreparedScene*>& scenes,
+                   const Widths& user, const ErrorTarget& target,
+                   const std::function<void(const std::string&, int)>& on_width) {
+  Sizing sizing;
+  // The worst scene's measure; results kept when asked.
+  const auto worst = [&](const Widths& w, std::vector<DesignResult>* results) {
+    double value = 0;
+    for (const PreparedScene* scene : scenes) {
+      ++sizing.evaluations;
+      DesignResult r = evaluate(*scene, design, w);
+      value = std::max(value, target_measure(r, target));
+      if (results) results->push_back(std::move(r));
+      else if (value > target.max_error) break;  // one failing scene is enough
+    }
+    return value;
+  };
+  Widths w = widest(user, design);
+  sizing.widths = w;
+  sizing.error = worst(w, nullptr);
+  if (sizing.error > target.max_error) return sizing;
+  sizing.reachable = true;
+  // Error falls as a width grows, so a binary search suffices; the final run
+  // below confirms the combination.
+  for (const std::string& name : sized_parameters(design)) {
+    const ParamInfo& p = info(name);
+    int lo = p.min_value, hi = w.*(p.field);
+    while (lo < hi) {
+      throw_if_interrupted();
+      const int mid = lo + (hi - lo) / 2;
+      Widths trial = w;
+      trial.*(p.field) = mid;
+      bool fits = true;
+      try {
+        validate(trial);
+      } catch (const std::invalid_argument&) {
+        fits = false;
+      }
+      if (fits && worst(trial, nullptr) <= target.max_error) hi = mid;
+      else lo = mid + 1;
+    }
+    w.*(p.field) = hi;
+    if (on_width) on_width(name, hi);
+  }
+  // Table depth: the deepest band any scene fills, per unit of density.
+  if (design.kind == Design::Kind::ConstantDepth) {
+    std::vector<DesignResult> wide;
+    worst(w, &wide);
+    int64_t high_water = 0;
+    for (const DesignResult& r : wide) high_water = std::max(high_water, r.table_high_water);
+    w.table_depth = std::max<int>(info("table_depth").min_value,
+                                  int((high_water + design.density - 1) / design.density));
+    if (on_width) on_width("table_depth", w.table_depth);
+  }
+  sizing.widths = w;
+  sizing.error = worst(w, &sizing.results);
+  return sizing;
+}
 
 CLI::App* add_size_command(CLI::App& app, SizeOptions& options) {
   CLI::App* size = app.add_subcommand(
@@ -104,61 +174,20 @@ int run_size_command(const SizeOptions& options) {
              options.max_error);
   std::fflush(stdout);
 
-  const auto measure = [&](const DesignResult& r) {
-    if (options.metric == "footprint") return r.error.footprint_max;
-    if (options.statistic == "p99") return r.error.p99;
-    if (options.statistic == "mean") return r.error.mean;
-    return r.error.max;
-  };
-  int evaluations = 0;
-  const auto meets = [&](const Widths& w, double* value) {
-    ++evaluations;
-    const DesignResult r = evaluate(scene, design, w);
-    *value = measure(r);
-    return *value <= options.max_error;
-  };
-
-  Widths w = widest(user);
-  double value = 0;
-  if (!meets(w, &value)) {
+  const ErrorTarget target{options.max_error, options.metric, options.statistic};
+  const Sizing sizing = size_design(design, {&scene}, user, target, [](const std::string& name, int value) {
+    fmt::print("  {:<12} {:>3}\n", name, value);
+    std::fflush(stdout);
+  });
+  if (!sizing.reachable) {
     fmt::print(stderr, "cdsim: not reachable: at the widest widths the {} {} error is {:.4g} > {}\n",
-               options.statistic, options.metric, value, options.max_error);
+               options.statistic, options.metric, sizing.error, options.max_error);
     return 1;
   }
-  // Coordinate descent: for each width, the smallest value that still meets the
-  // target with the others where they stand (error falls as a width grows, so a
-  // binary search suffices; the final run below confirms the combination).
-  for (const std::string& name : sized_parameters(design)) {
-    const ParamInfo& p = info(name);
-    int lo = p.min_value, hi = w.*(p.field);
-    while (lo < hi) {
-      const int mid = lo + (hi - lo) / 2;
-      Widths trial = w;
-      trial.*(p.field) = mid;
-      bool fits = true;
-      try {
-        validate(trial);
-      } catch (const std::invalid_argument&) {
-        fits = false;
-      }
-      double trial_value = 0;
-      if (fits && meets(trial, &trial_value)) hi = mid;
-      else lo = mid + 1;
-    }
-    w.*(p.field) = hi;
-    fmt::print("  {:<12} {:>3}\n", name, hi);
-  }
-  // Table depth: the deepest band the scene fills, per unit of density.
-  DesignResult result = evaluate(scene, design, w);
-  if (design.kind == Design::Kind::ConstantDepth) {
-    w.table_depth = std::max<int>(info("table_depth").min_value,
-                                  int((result.table_high_water + design.density - 1) / design.density));
-    fmt::print("  {:<12} {:>3}\n", "table_depth", w.table_depth);
-    result = evaluate(scene, design, w);
-  }
-  const double confirmed = measure(result);
-  fmt::print("\nresult ({} model runs): {}\n\n", evaluations + 2, describe(w));
-  std::cout << results_table({result}, w);
+  const Widths w = sizing.widths;
+  const double confirmed = sizing.error;
+  fmt::print("\nresult ({} model runs): {}\n\n", sizing.evaluations, describe(w));
+  std::cout << results_table(sizing.results, w);
   fmt::print("\n{}: {} {} error {:.4g} {} target {}\n", confirmed <= options.max_error ? "confirmed" : "NOT MET",
              options.statistic, options.metric, confirmed, confirmed <= options.max_error ? "<=" : ">",
              options.max_error);

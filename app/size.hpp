@@ -5,7 +5,9 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <functional>
 #include <string>
+#include <vector>
 
 #include "common.hpp"
 
@@ -21,6 +23,30 @@ struct SizeOptions {
   double verify_backpressure = 0.3;
   std::string rtl_cache;            // empty: the default cache folder
 };
+
+// What sizing must meet: `statistic` of `metric` <= max_error on every scene.
+struct ErrorTarget {
+  double max_error = 0.5;
+  std::string metric = "texels";   // texels | footprint
+  std::string statistic = "max";   // max | p99 | mean
+};
+double target_measure(const DesignResult& result, const ErrorTarget& target);
+
+struct Sizing {
+  bool reachable = false;     // false: not even the widest widths meet the target
+  Widths widths;              // sized; table_depth the deepest band the scenes fill
+  std::vector<DesignResult> results;  // per scene, at `widths`
+  double error = 0;           // the worst scene's measure at `widths` (at the widest if unreachable)
+  int evaluations = 0;        // model runs
+};
+
+// Coordinate descent from wide widths: each width the design's accuracy
+// depends on, in turn, at the smallest value that still meets the target on
+// every scene with the others where they stand; then the table depth of the
+// deepest band. `on_width` (optional) is told each width as it is fixed.
+Sizing size_design(const Design& design, const std::vector<const PreparedScene*>& scenes,
+                   const Widths& user, const ErrorTarget& target,
+                   const std::function<void(const std::string&, int)>& on_width = {});
 
 CLI::App* add_size_command(CLI::App& app, SizeOptions& options);
 int run_size_command(const SizeOptions& options);

@@ -12,12 +12,15 @@
 #include <iostream>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <thread>
 
+#include "area.hpp"
 #include "cache_files.hpp"
 #include "cli_checks.hpp"
 #include "interrupt.hpp"
+#include "progress.hpp"
 #include "report.hpp"
 
 namespace cdsim {
@@ -109,6 +112,8 @@ std::string csv_header() {
   for (const auto& p : param_table()) h += fmt::format(",{}", p.name);
   h += ",swept,pixels,cycles,pixels_per_clock,table_entries,table_bits,register_bits,error_mean,"
        "error_rms,error_p99,error_max,footprint_max,texel_mismatch,over_lsb,flagged_triangles";
+  // Empty unless the sweep ran with --area and the design has RTL.
+  h += ",logic_area_um2,nand2_eq,sram_bits,sram_area_um2,flop_table_area_um2,total_area_um2";
   return h;
 }
 
@@ -125,7 +130,8 @@ int64_t flagged(const DesignResult& r) {
   return n;
 }
 
-std::string csv_row(const std::string& scene, const Config& c, const DesignResult& r) {
+std::string csv_row(const std::string& scene, const Config& c, const DesignResult& r,
+                    const AreaReport* area) {
   std::string row = fmt::format("{},{}", csv_field(scene), c.design.name);
   for (const auto& p : param_table()) row += fmt::format(",{}", c.widths.*(p.field));
   row += fmt::format(",{},{},{},{:.6f},{},{},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{}",
@@ -133,38 +139,16 @@ std::string csv_row(const std::string& scene, const Config& c, const DesignResul
                      r.table_bits, r.register_bits, r.error.mean, r.error.rms, r.error.p99,
                      r.error.max, r.error.footprint_max, r.error.texel_mismatch, r.error.over_lsb,
                      flagged(r));
+  if (area) {
+    const nlohmann::json a = area_summary_json(*area);
+    row += fmt::format(",{:.1f},{:.1f},{},{:.1f},{:.1f},{:.1f}", area->logic_area_um2,
+                       a.at("nand2_eq").get<double>(), area->sram_bits, area->sram_area_um2,
+                       area->flop_table_area_um2, area->total_area_um2);
+  } else {
+    row += ",,,,,,";
+  }
   return row;
 }
-
-// Progress on stderr: a bar redrawn in place on a terminal, else a plain line
-// every kPlainProgressSeconds, so that a log shows the sweep is alive.
-constexpr double kPlainProgressSeconds = 5.0;
-
-class Progress {
- public:
-  explicit Progress(size_t total) : total_(total), tty_(isatty(fileno(stderr))) {}
-  void update(size_t done, double seconds, bool final = false) {
-    const std::string left =
-        done > 0 && done < total_ ? fmt::format(", about {:.0f} s to go", seconds / double(done) * double(total_ - done))
-                                  : "";
-    if (tty_) {
-      const int width = 40;
-      const int filled = total_ ? int(width * done / total_) : width;
-      fmt::print(stderr, "\r[{:<{}}] {}/{} configurations, {:.0f} s{}\x1b[K",
-                 std::string(size_t(filled), '='), width, done, total_, seconds, left);
-      if (final) fmt::print(stderr, "\n");
-    } else if (final || seconds >= next_line_) {
-      fmt::print(stderr, "sweep: {}/{} configurations ({:.1f} %), {:.0f} s{}\n", done, total_,
-                 total_ ? 100.0 * double(done) / double(total_) : 100.0, seconds, left);
-      next_line_ = seconds + kPlainProgressSeconds;
-    }
-  }
-
- private:
-  size_t total_;
-  bool tty_;
-  double next_line_ = kPlainProgressSeconds;
-};
 
 // The sweep's axes and designs from --set, --design and --file; a parameter
 // swept twice, or designs given twice, are refused naming both places.
@@ -228,6 +212,9 @@ CLI::App* add_sweep_command(CLI::App& app, SweepOptions& options) {
       ->capture_default_str();
   sweep->add_option("--jobs", options.jobs, "worker threads (default: all cores)")
       ->check(cli::integer_in(1, 1024));
+  sweep->add_flag("--area", options.area,
+                  "also synthesise each distinct configuration of a design with RTL (cdsim area: "
+                  "Yosys, cached, all cores) and add its area to the rows");
   sweep->add_flag("--yes", options.yes,
                   fmt::format("run a sweep of more than {} configurations", kSweepConfirmLimit));
   return sweep;
@@ -301,7 +288,7 @@ int run_sweep_command(const SweepOptions& options) {
       }
       --running;
     });
-  Progress progress(configs.size());
+  Progress progress(configs.size(), "sweep", "configurations");
   for (int tick = 0; running > 0; ++tick) {
     if (interrupted()) next = configs.size();
     if (tick % 2 == 0) progress.update(done, elapsed());
@@ -311,6 +298,23 @@ int run_sweep_command(const SweepOptions& options) {
   throw_if_interrupted();
   if (failure) std::rethrow_exception(failure);
   progress.update(done, elapsed(), true);
+
+  // Area: each distinct configuration synthesised once, after the model runs.
+  std::vector<std::optional<AreaReport>> areas(configs.size());
+  if (options.area) {
+    std::vector<AreaJob> jobs_list;
+    std::vector<size_t> rows;
+    for (size_t i = 0; i < configs.size(); ++i)
+      if (has_rtl(configs[i].design)) {
+        jobs_list.push_back({configs[i].design, configs[i].widths});
+        rows.push_back(i);
+      }
+    fmt::print("area: {} configurations with RTL to synthesise (cached ones are free)\n", jobs_list.size());
+    std::fflush(stdout);
+    const AreaOptions area_options;
+    const std::vector<AreaReport> reports = synthesise_areas(jobs_list, area_options, jobs);
+    for (size_t k = 0; k < rows.size(); ++k) areas[rows[k]] = reports[k];
+  }
 
   const std::string csv_path = (std::filesystem::path(options.out) / "sweep.csv").string();
   const std::string json_path = (std::filesystem::path(options.out) / "sweep.json").string();
@@ -323,11 +327,12 @@ int run_sweep_command(const SweepOptions& options) {
   for (const auto& p : param_table()) json["defaults"][p.name] = p.default_value;
   json["rows"] = nlohmann::json::array();
   for (size_t i = 0; i < configs.size(); ++i) {
-    csv += csv_row(scene.name, configs[i], results[i]) + '\n';
+    csv += csv_row(scene.name, configs[i], results[i], areas[i] ? &*areas[i] : nullptr) + '\n';
     nlohmann::json row = results_json(scene, configs[i].widths, {results[i]})["designs"][0];
     row["scene"] = scene.name;
     for (const auto& p : param_table()) row["widths"][p.name] = configs[i].widths.*(p.field);
     for (const auto& [name, value] : configs[i].swept) row["swept"][name] = value;
+    if (areas[i]) row["area"] = area_summary_json(*areas[i]);
     json["rows"].push_back(row);
   }
   // Both files complete before either replaces the previous run's.

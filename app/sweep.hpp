@@ -23,6 +23,7 @@ struct SweepOptions {
   std::string out = "sweep-out";
   int jobs = 0;          // worker threads; 0 (not given): all cores
   bool yes = false;      // run more than kSweepConfirmLimit configurations
+  bool area = false;     // also synthesise each distinct configuration (cdsim area, cached)
 };
 
 CLI::App* add_sweep_command(CLI::App& app, SweepOptions& options);

@@ -3,7 +3,7 @@
 // 2^uv_in_frac) stepping by constants; the integer part I is kept by a
 // midpoint (Pitteway-style) iteration with remainder R = N - I D, 0 <= R < D,
 // one unit step of I per cycle; the fraction is kim_frac bits of R / D by
-// restoring division. See docs/designs.md.
+// restoring division. See docs/designs.md; the RTL is rtl/kim_datapath.sv.
 #pragma once
 
 #include "correction_adder.hpp"
@@ -15,17 +15,22 @@ struct KimPixel {
   CorrectedValue value;     // output format
   int64_t integer_u = 0;    // I for u and v: the iteration's state after this pixel
   int64_t integer_v = 0;
+  bool depth_out = false;   // D <= 0: no steps, I held, output 0
 };
 
 // The pixel's I and fraction. The iteration's result is defined by its
-// invariant 0 <= R < D, so I = floor(N / D) exactly; the number of unit steps
-// it took from the previous pixel is |I - I_previous|, which the timing layer
-// charges. R / D is then divided to kim_frac bits (truncating, as restoring
-// division does) and rounded to the output format.
+// invariant 0 <= R < D, so I = floor(N / D) exactly, clamped to the out_int
+// register; the number of unit steps it took from the previous pixel is
+// |I - I_previous|, which the timing layer charges. R / D is then divided to
+// kim_frac bits (truncating, as restoring division does) and rounded to the
+// output format. A pixel with D <= 0 raises depth_range, outputs 0 and takes
+// no steps: I is the previous pixel's (`previous`), or 0 at a span's first
+// pixel (previous = nullptr), where the span division does not run.
 KimPixel kim_pixel(const Setup& setup, int64_t major_offset, int64_t minor_offset,
-                   const Widths& widths, uint32_t* flags);
+                   const Widths& widths, const KimPixel* previous, uint32_t* flags);
 
-// Cycles of the integer stage for a pixel whose I moved by `steps`.
+// Cycles of the integer stage for a pixel whose I moved by `steps`:
+// max(1, ceil(steps / kim_unroll)).
 inline int64_t kim_integer_cycles(int64_t steps, const Widths& w) {
   const int64_t per_cycle = w.kim_unroll;
   return steps <= per_cycle ? 1 : (steps + per_cycle - 1) / per_cycle;

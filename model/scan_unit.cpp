@@ -1,6 +1,7 @@
 #include "scan_unit.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 
 #include "column_walker.hpp"
 #include "derived_widths.hpp"
@@ -127,34 +128,50 @@ TriangleRecord ScanUnit::run_divide(const Setup& s, std::vector<Fragment>* fragm
 
 TriangleRecord ScanUnit::run_kim(const Setup& s, std::vector<Fragment>* fragments) {
   TriangleRecord record;
-  // Each column: one cycle, and for a non-empty span one full division
-  // (out_int quotient bits, one per cycle) to initialise I and R.
-  record.walk_cycles = s.major_count;
+  // Two stages overlap (rtl/kim_datapath.sv): A, the integer stage, and B, the
+  // fraction stage. Cycles are counted from the first column cycle (0). Each
+  // column takes one walker cycle; for a span with pixels A then divides for
+  // out_int cycles, and holds the first pixel's I, R in the cycle after. A
+  // hands a finished pixel to B in a cycle where B accepts one and starts the
+  // next pixel's steps in that same cycle, so pixel k is ready
+  // kim_integer_cycles(steps) cycles after pixel k-1's hand-off. B accepts a
+  // pixel kim_frac cycles after the last (iterative: one subtractor) or every
+  // cycle (pipelined) and offers its fragment kim_frac cycles after the
+  // hand-off. The walker's next column cycle follows the span's last hand-off;
+  // at the end the unit waits for B's last fragment.
+  const int64_t fraction_cycles = widths_.kim_frac;
+  const int64_t accept_gap = design_.pipelined ? 1 : fraction_cycles;
+  int64_t next_cycle = 0;      // the walker's next cycle
+  int64_t b_accepts = 0;       // the first cycle B can take a pixel
+  int64_t last_fragment = -1;  // the cycle B offers its last fragment
   ColumnWalker walker(s, widths_);
   for (int64_t offset = 0; offset < s.major_count; ++offset, walker.advance()) {
     const ColumnState c = walker.column();
+    const int64_t column_cycle = next_cycle++;
     if (c.span.empty()) continue;
-    record.walk_cycles += widths_.out_int;
-    int64_t previous_u = 0, previous_v = 0;
+    int64_t ready = column_cycle + 1 + widths_.out_int;  // after the span division
+    int64_t handoff = 0;
+    KimPixel previous;
     for (int64_t minor = c.span.lo; minor <= c.span.hi; ++minor) {
-      const KimPixel p = kim_pixel(s, offset, minor - s.minor_lo, widths_, &record.flags);
-      const int64_t steps = minor == c.span.lo
-                                ? 0
-                                : std::max(std::abs(p.integer_u - previous_u),
-                                           std::abs(p.integer_v - previous_v));
-      previous_u = p.integer_u;
-      previous_v = p.integer_v;
-      const int64_t integer_cycles = kim_integer_cycles(steps, widths_);
-      // The integer and fraction stages are pipelined with each other; an
-      // iterative fraction unit holds each pixel for kim_frac cycles.
-      record.walk_cycles += design_.pipelined ? integer_cycles
-                                              : std::max<int64_t>(integer_cycles, widths_.kim_frac);
+      const bool first = minor == c.span.lo;
+      const KimPixel p =
+          kim_pixel(s, offset, minor - s.minor_lo, widths_, first ? nullptr : &previous, &record.flags);
+      if (!first) {
+        const int64_t steps = std::max(std::abs(p.integer_u - previous.integer_u),
+                                       std::abs(p.integer_v - previous.integer_v));
+        ready = handoff + kim_integer_cycles(steps, widths_);
+      }
+      previous = p;
+      handoff = std::max(ready, b_accepts);
+      b_accepts = handoff + accept_gap;
+      last_fragment = handoff + fraction_cycles;
       fragments->push_back(make_fragment(s, c, minor, p.value));
       record.flags |= fragments->back().flags;
       ++record.pixels;
     }
+    next_cycle = handoff + 1;
   }
-  if (design_.pipelined) record.walk_cycles += widths_.kim_frac;  // drain the fraction pipeline
+  record.walk_cycles = std::max(next_cycle, last_fragment + 1);
   return record;
 }
 

@@ -16,7 +16,9 @@
 // PIXEL cycle into its pipeline and then DRAINs it: SetupCycles + columns +
 // pixels + recip_latency; a fragment not taken stalls the whole unit for that
 // cycle, which is counted. affine emits from its plane accumulators in PIXEL
-// cycles: SetupCycles + columns + pixels.
+// cycles: SetupCycles + columns + pixels. kim-iter and kim-pipe overlap an
+// integer stage (a span division, then unit steps) with a fraction stage and
+// DRAIN the fraction stage at the end (rtl/kim_datapath.sv, docs/rtl.md).
 `include "cd_widths.svh"
 `default_nettype none
 
@@ -38,6 +40,11 @@ module cd_scan_unit #(
   // N up to 2^MaxSegmentLog2.
   parameter bit HasAffineSub = 1'b1,
   parameter int MaxSegmentLog2 = 4,
+  // kim-iter and kim-pipe (rtl/kim_datapath.sv): the span division and unit
+  // steps with three plane accumulators, and an iterative or a pipelined
+  // fraction stage (either present alone is one design; both share the rest).
+  parameter bit HasKimIter = 1'b1,
+  parameter bit HasKimPipe = 1'b1,
   // The obs_* ports, for the scoreboard; synthesis turns them off.
   parameter bit HasObservation = 1'b1
 ) (
@@ -68,8 +75,9 @@ module cd_scan_unit #(
   input  logic [15:0] viewport_width_i,
   input  logic [15:0] viewport_height_i,
   /* verilator lint_on UNUSEDSIGNAL */
-  input  logic [1:0]  kind_i,             // 0 constant depth, 1 divide, 3 affine (model/design.hpp)
+  input  logic [1:0]  kind_i,             // 0 constant depth, 1 divide, 2 Kim, 3 affine (model/design.hpp)
   input  logic [2:0]  segment_log2_i,     // affine: 0 plain, else subdivided every 2^segment_log2_i pixels
+  input  logic        kim_pipelined_i,    // Kim: 1 kim-pipe, 0 kim-iter
   input  logic [1:0]  density_log2_i,     // m = 1, 2, 4
   input  logic        correction_i,
 
@@ -139,20 +147,23 @@ module cd_scan_unit #(
   localparam logic [2:0] StDrain  = 3'd7;  // per-pixel designs: the pipeline empties
 
   localparam logic [1:0] KindDivide = 2'd1;  // kind_i: 0 is constant depth
+  localparam logic [1:0] KindKim    = 2'd2;
   localparam logic [1:0] KindAffine = 2'd3;
+  localparam bit HasKim = HasKimIter || HasKimPipe;
   localparam int Datapaths = (HasTable ? 1 : 0) + (HasDivide ? 1 : 0) + (HasAffine ? 1 : 0) +
-                             (HasAffineSub ? 1 : 0);
+                             (HasAffineSub ? 1 : 0) + (HasKim ? 1 : 0);
   if (Datapaths == 0) begin : gen_no_datapath
-    $error("cd_scan_unit needs at least one datapath (HasTable, HasDivide, HasAffine, HasAffineSub)");
+    $error("cd_scan_unit needs at least one datapath (HasTable, HasDivide, HasAffine, HasAffineSub, HasKimIter, HasKimPipe)");
   end
 
   logic [2:0]  state_d, state_q;
   logic [StepCountBits-1:0] count_d, count_q;   // setup / fill / scan cycle within the state
   logic [1:0]  kind_d, kind_q;
-  logic        mode_divide, mode_affine, mode_sub;  // this triangle's datapath, when not the table
+  logic        mode_divide, mode_affine, mode_sub, mode_kim;  // this triangle's datapath, when not the table
   logic [2:0]  segment_log2_d, segment_log2_q;
+  logic        kim_pipelined_d, kim_pipelined_q;
   logic        per_pixel;                        // a per-pixel design: no fill, no band clip
-  logic        stall;                            // a divide fragment offered and not taken
+  logic        stall;                            // a divide or Kim fragment offered and not taken
   logic [1:0]  density_log2_d, density_log2_q;
   logic        correction_d, correction_q;
   logic signed [LineBits-1:0] band_lo_d, band_lo_q, band_hi_d, band_hi_q;
@@ -188,8 +199,8 @@ module cd_scan_unit #(
   logic signed [`CD_PLANE_STEP_UV_BITS-1:0] u_per_major, v_per_major, u_per_minor, v_per_minor;
 
   setup_engine #(
-    .HasLines(HasTable), .HasPixelPlanes(HasDivide || HasAffineSub),
-    .HasPlanes(HasTable || HasDivide || HasAffineSub), .SramDepth(SramDepth)
+    .HasLines(HasTable), .HasPixelPlanes(HasDivide || HasAffineSub || HasKim),
+    .HasPlanes(HasTable || HasDivide || HasAffineSub || HasKim), .SramDepth(SramDepth)
   ) u_setup_engine (
     .clk_i,
     .rst_ni,
@@ -526,6 +537,85 @@ module cd_scan_unit #(
     assign sub_depth_out = 1'b0;
   end
 
+  // kim-iter, kim-pipe: the plane accumulators give a span's first q, U, V
+  // (start values, one multiply per column); the datapath steps its own D,
+  // R and S from there.
+  logic                      kim_handoff, kim_drained, kim_valid, kim_saturated, kim_depth_out;
+  logic signed [OutBits-1:0] kim_u, kim_v;
+  logic [2*PixelBits-1:0]    kim_tag;
+
+  /* verilator lint_off PINCONNECTEMPTY */
+  if (HasKim) begin : gen_kim
+    logic signed [`CD_PIXEL_Q_BITS-1:0]  q_start;
+    logic signed [`CD_PIXEL_UV_BITS-1:0] u_start, v_start;
+
+    plane_accumulator #(
+      .RefBits(`CD_PLANE_REF_Q_BITS), .StepBits(`CD_PLANE_STEP_Q_BITS), .AccBits(`CD_PIXEL_Q_BITS),
+      .HasPixel(1'b0)
+    ) u_plane_q (
+      .clk_i, .init_i(column_init && mode_kim), .advance_i(column_advance && mode_kim),
+      .start_i(plane_start && mode_kim), .step_i(1'b0),
+      .first_offset_i(column_first - minor_lo), .jump_i(1'b0), .start_value_o(q_start), .next_value_o(),
+      .at_ref_i(q_at_ref), .per_major_i(q_per_major), .per_minor_i(q_per_minor), .value_o()
+    );
+    plane_accumulator #(
+      .RefBits(`CD_PLANE_REF_UV_BITS), .StepBits(`CD_PLANE_STEP_UV_BITS), .AccBits(`CD_PIXEL_UV_BITS),
+      .HasPixel(1'b0)
+    ) u_plane_u (
+      .clk_i, .init_i(column_init && mode_kim), .advance_i(column_advance && mode_kim),
+      .start_i(plane_start && mode_kim), .step_i(1'b0),
+      .first_offset_i(column_first - minor_lo), .jump_i(1'b0), .start_value_o(u_start), .next_value_o(),
+      .at_ref_i(u_at_ref), .per_major_i(u_per_major), .per_minor_i(u_per_minor), .value_o()
+    );
+    plane_accumulator #(
+      .RefBits(`CD_PLANE_REF_UV_BITS), .StepBits(`CD_PLANE_STEP_UV_BITS), .AccBits(`CD_PIXEL_UV_BITS),
+      .HasPixel(1'b0)
+    ) u_plane_v (
+      .clk_i, .init_i(column_init && mode_kim), .advance_i(column_advance && mode_kim),
+      .start_i(plane_start && mode_kim), .step_i(1'b0),
+      .first_offset_i(column_first - minor_lo), .jump_i(1'b0), .start_value_o(v_start), .next_value_o(),
+      .at_ref_i(v_at_ref), .per_major_i(v_per_major), .per_minor_i(v_per_minor), .value_o()
+    );
+
+    kim_datapath #(
+      .HasIterative(HasKimIter), .HasPipelined(HasKimPipe)
+    ) u_kim_datapath (
+      .clk_i, .rst_ni,
+      .hold_i        (stall),
+      .pipelined_i   (kim_pipelined_q),
+      .span_i        (plane_start && mode_kim),
+      .q_start_i     (q_start),
+      .u_start_i     (u_start),
+      .v_start_i     (v_start),
+      .q_per_minor_i (q_per_minor),
+      .u_per_minor_i (u_per_minor),
+      .v_per_minor_i (v_per_minor),
+      .active_i      (state_q == StPixel && mode_kim),
+      .last_pixel_i  (minor_q == last_q),
+      .tag_i         ({major_q, minor_q}),
+      .handoff_o     (kim_handoff),
+      .drained_o     (kim_drained),
+      .valid_o       (kim_valid),
+      .u_o           (kim_u),
+      .v_o           (kim_v),
+      .saturated_o   (kim_saturated),
+      .depth_out_o   (kim_depth_out),
+      .tag_o         (kim_tag)
+    );
+  end else begin : gen_no_kim
+    logic unused_kim;
+    assign unused_kim = kim_pipelined_q;
+    assign kim_handoff = 1'b0;
+    assign kim_drained = 1'b1;
+    assign kim_valid = 1'b0;
+    assign kim_u = '0;
+    assign kim_v = '0;
+    assign kim_saturated = 1'b0;
+    assign kim_depth_out = 1'b0;
+    assign kim_tag = '0;
+  end
+  /* verilator lint_on PINCONNECTEMPTY */
+
   logic signed [OutBits-1:0] frag_u, frag_v;
   logic [7:0]         frag_flags;
   always_comb begin
@@ -547,6 +637,11 @@ module cd_scan_unit #(
       frag_v = sub_v;
       frag_flags = '0;
       frag_flags[`CD_FLAG_OUTPUT_SATURATED] = sub_saturated;
+    end else if (mode_kim) begin
+      frag_u = kim_u;
+      frag_v = kim_v;
+      frag_flags = '0;
+      frag_flags[`CD_FLAG_OUTPUT_SATURATED] = kim_saturated;
     end
   end
 
@@ -562,14 +657,17 @@ module cd_scan_unit #(
   assign mode_divide = HasDivide && (Datapaths == 1 || kind_q == KindDivide);
   assign mode_affine = HasAffine && (Datapaths == 1 || (kind_q == KindAffine && segment_log2_q == '0));
   assign mode_sub = HasAffineSub && (Datapaths == 1 || (kind_q == KindAffine && segment_log2_q != '0));
-  assign per_pixel = mode_divide || mode_affine || mode_sub;
-  assign stall = mode_divide && pipe_valid && !frag_ready_i;
+  assign mode_kim = HasKim && (Datapaths == 1 || kind_q == KindKim);
+  assign per_pixel = mode_divide || mode_affine || mode_sub || mode_kim;
+  // The per-pixel pipelines offer fragments on their own; one not taken holds everything.
+  assign stall = ((mode_divide && pipe_valid) || (mode_kim && kim_valid)) && !frag_ready_i;
 
   always_comb begin
     state_d = state_q;
     count_d = count_q;
     kind_d = kind_q;
     segment_log2_d = segment_log2_q;
+    kim_pipelined_d = kim_pipelined_q;
     density_log2_d = density_log2_q;
     correction_d = correction_q;
     band_lo_d = band_lo_q;
@@ -615,6 +713,7 @@ module cd_scan_unit #(
           count_d = '0;
           kind_d = kind_i;
           segment_log2_d = segment_log2_i;
+          kim_pipelined_d = kim_pipelined_i;
           density_log2_d = density_log2_i;
           correction_d = correction_i && HasCorrection;
           cycles_d = '0;
@@ -700,6 +799,22 @@ module cd_scan_unit #(
             plane_step = 1'b1;
           end
         end
+      end else if (mode_kim) begin
+        // The integer stage hands its pixel to the fraction stage, which offers
+        // the fragment later; the walk moves on with the hand-offs.
+        if (!stall && kim_handoff) begin
+          if (minor_q == last_q) begin
+            if (last_column) begin
+              band_done = 1'b1;
+            end else begin
+              state_d = StColumn;
+              offset_d = offset_q + PixelBits'(1);
+              column_advance = 1'b1;
+            end
+          end else begin
+            minor_d = minor_q + PixelBits'(1);
+          end
+        end
       end else begin
         if (frag_ready_i && (!mode_sub || sub_valid)) begin
           pixels_d = pixels_q + CountBits'(1);
@@ -726,7 +841,11 @@ module cd_scan_unit #(
       end
       StDrain: if (!stall) begin
         count_d = count_q + StepCountBits'(1);
-        if (count_q == StepCountBits'(RecipLatency - 1)) state_d = StRecord;
+        if (mode_kim) begin
+          if (kim_drained) state_d = StRecord;
+        end else if (count_q == StepCountBits'(RecipLatency - 1)) begin
+          state_d = StRecord;
+        end
       end
       StRecord: begin
         if (rec_ready_i) state_d = StIdle;
@@ -739,6 +858,10 @@ module cd_scan_unit #(
     if (next_band_hi > BandBits'(pixel_line_hi)) next_band_hi = BandBits'(pixel_line_hi);
     if (band_done && mode_divide) begin
       state_d = StDrain;
+      count_d = '0;
+    end else if (band_done && mode_kim) begin
+      // The fraction stage may still hold pixels (always, after a last pixel's hand-off).
+      state_d = kim_drained ? StRecord : StDrain;
       count_d = '0;
     end else if (band_done && (mode_affine || mode_sub)) begin
       state_d = StRecord;
@@ -763,6 +886,11 @@ module cd_scan_unit #(
       flags_d = flags_q | frag_flags;
       if (pipe_depth_out) flags_d[`CD_FLAG_DEPTH_RANGE] = 1'b1;
     end
+    if (mode_kim && kim_valid && frag_ready_i) begin
+      pixels_d = pixels_q + CountBits'(1);
+      flags_d = flags_q | frag_flags;
+      if (kim_depth_out) flags_d[`CD_FLAG_DEPTH_RANGE] = 1'b1;
+    end
     // An affine-subN end point with q <= 0.
     if (mode_sub && sub_depth_out) flags_d[`CD_FLAG_DEPTH_RANGE] = 1'b1;
 
@@ -785,6 +913,7 @@ module cd_scan_unit #(
       count_q <= '0;
       kind_q <= '0;
       segment_log2_q <= '0;
+      kim_pipelined_q <= 1'b0;
       density_log2_q <= '0;
       correction_q <= 1'b0;
       band_lo_q <= '0;
@@ -807,6 +936,7 @@ module cd_scan_unit #(
       count_q <= count_d;
       kind_q <= kind_d;
       segment_log2_q <= segment_log2_d;
+      kim_pipelined_q <= kim_pipelined_d;
       density_log2_q <= density_log2_d;
       correction_q <= correction_d;
       band_lo_q <= band_lo_d;
@@ -831,9 +961,11 @@ module cd_scan_unit #(
   assign tri_ready_o = state_q == StIdle;
 
   logic [PixelBits-1:0] frag_major, frag_minor;
-  assign frag_major = mode_divide ? pipe_tag[PixelBits +: PixelBits] : major_q;
-  assign frag_minor = mode_divide ? pipe_tag[0 +: PixelBits] : minor_q;
-  assign frag_valid_o = mode_divide ? pipe_valid : state_q == StPixel && (!mode_sub || sub_valid);
+  assign frag_major = mode_divide ? pipe_tag[PixelBits +: PixelBits] :
+                      mode_kim ? kim_tag[PixelBits +: PixelBits] : major_q;
+  assign frag_minor = mode_divide ? pipe_tag[0 +: PixelBits] : mode_kim ? kim_tag[0 +: PixelBits] : minor_q;
+  assign frag_valid_o = mode_divide ? pipe_valid : mode_kim ? kim_valid :
+                        state_q == StPixel && (!mode_sub || sub_valid);
   assign frag_x_o = setup_x_major ? 16'(frag_major) : 16'(frag_minor);
   assign frag_y_o = setup_x_major ? 16'(frag_minor) : 16'(frag_major);
   assign frag_u_o = 64'(frag_u);

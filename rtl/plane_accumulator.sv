@@ -12,6 +12,10 @@
 // column) loads column 0; advance_i moves to the next column; start_i loads
 // the column's first pixel; step_i moves to the next pixel of the column (or
 // jump_i pixels on).
+//
+// HasPixel = 0 builds only the column value and start_value_o (Kim-style
+// designs, which step their own state from a span's first pixel): no pixel
+// register, value_o and next_value_o are 0 and step_i must stay 0.
 `include "cd_widths.svh"
 `default_nettype none
 
@@ -19,7 +23,8 @@ module plane_accumulator #(
   parameter int RefBits  = 32,
   parameter int StepBits = 32,
   parameter int AccBits  = 40,
-  parameter int JumpBits = 0
+  parameter int JumpBits = 0,
+  parameter bit HasPixel = 1'b1
 ) (
   input  logic                       clk_i,
   input  logic                       init_i,
@@ -61,12 +66,22 @@ module plane_accumulator #(
   always_ff @(posedge clk_i) begin
     if (init_i) column <= AccBits'(at_ref_i);
     else if (advance_i) column <= column + AccBits'(per_major_i);
-    if (start_i) pixel <= start_value_o;
-    else if (step_i) pixel <= next;
   end
 
-  assign value_o = pixel;
-  assign next_value_o = next;
+  if (HasPixel) begin : gen_pixel
+    always_ff @(posedge clk_i) begin
+      if (start_i) pixel <= start_value_o;
+      else if (step_i) pixel <= next;
+    end
+    assign value_o = pixel;
+    assign next_value_o = next;
+  end else begin : gen_no_pixel
+    logic unused_pixel;
+    assign unused_pixel = ^{step_i, next};
+    assign pixel = '0;
+    assign value_o = '0;
+    assign next_value_o = '0;
+  end
 
 endmodule
 

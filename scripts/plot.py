@@ -1,5 +1,6 @@
-"""Plots of a cdsim sweep: speed against error, the paper's Fig. 8-10 in our terms,
-and error against every swept width. Usage: scripts/plot SWEEP_DIR [MORE...]."""
+"""Plots of a cdsim sweep: speed against error, area against error (a sweep run
+with --area), the paper's Fig. 8-10 in our terms, and error against every swept
+width. Usage: scripts/plot SWEEP_DIR [MORE...]."""
 import csv
 import json
 import math
@@ -20,6 +21,9 @@ FAMILY_STYLE = {
 NUMERIC = ["pixels", "cycles", "pixels_per_clock", "table_entries", "table_bits", "register_bits",
            "error_mean", "error_rms", "error_p99", "error_max", "footprint_max", "texel_mismatch",
            "over_lsb", "flagged_triangles"]
+# Present, and empty unless the sweep ran with --area and the design has RTL.
+AREA = ["logic_area_um2", "nand2_eq", "sram_bits", "sram_area_um2", "flop_table_area_um2",
+        "total_area_um2"]
 
 
 def load(dirs):
@@ -37,6 +41,8 @@ def load(dirs):
             for r in csv.DictReader(f):
                 for k in NUMERIC:
                     r[k] = float(r[k])
+                for k in AREA:
+                    r[k] = float(r[k]) if r.get(k) else None
                 for p in params:
                     r[p] = int(r[p])
                 rows.append(r)
@@ -48,12 +54,12 @@ def is_default(row, defaults):
 
 
 def pareto(points):
-    """Lowest cycles for each error level: points sorted by error, cycles falling."""
+    """Lowest cost (cycles, area) for each error level: points sorted by error, cost falling."""
     front, best = [], math.inf
-    for err, cyc in sorted(points):
-        if cyc < best:
-            front.append((err, cyc))
-            best = cyc
+    for err, cost in sorted(points):
+        if cost < best:
+            front.append((err, cost))
+            best = cost
     return front
 
 
@@ -97,6 +103,43 @@ def speed_vs_error(rows, out, caption):
     finish(fig, os.path.join(out, "cycles_vs_error.png"), caption)
 
 
+def area_vs_error(rows, out, caption):
+    """Total area (logic + SRAM table) against mean and footprint-max error with
+    each design's Pareto front, and area x cycles per pixel against mean error."""
+    rows = [r for r in rows if r["total_area_um2"]]
+    if not rows:
+        print("plot: no area in these sweeps (cdsim sweep --area): area plots skipped")
+        return
+    fig, axes = plt.subplots(1, 3, figsize=(18, 5.5))
+    panels = ((axes[0], "error_mean", "mean error (texels)", lambda r: r["total_area_um2"],
+               "total area (um^2)"),
+              (axes[1], "footprint_max", "footprint-max error", lambda r: r["total_area_um2"],
+               "total area (um^2)"),
+              (axes[2], "error_mean", "mean error (texels)",
+               lambda r: r["total_area_um2"] * r["cycles"] / max(1.0, r["pixels"]),
+               "total area x cycles per pixel (um^2)"))
+    for ax, metric, xlabel, cost, ylabel in panels:
+        for d in designs_in(rows):
+            color, marker = FAMILY_STYLE.get(d, ("k", "."))
+            pts = [(r[metric], cost(r)) for r in rows if r["design"] == d and r[metric] > 0]
+            if not pts:
+                continue
+            ax.scatter([p[0] for p in pts], [p[1] for p in pts], s=14, color=color, marker=marker,
+                       alpha=0.5)
+            front = pareto(pts)
+            ax.plot([p[0] for p in front], [p[1] for p in front], color=color, label=d, lw=1.5,
+                    drawstyle="steps-post")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel(xlabel)
+        ax.set_ylabel(ylabel)
+        ax.grid(True, which="both", alpha=0.3)
+    axes[0].legend(fontsize=7, ncol=2)
+    fig.suptitle("Cost against error (Yosys onto osu018, SRAM table; docs/area.md); "
+                 "lines are each design's Pareto front")
+    finish(fig, os.path.join(out, "area_vs_error.png"), caption)
+
+
 def interpolate_log(front, error):
     """Cycles a front needs to reach `error` (log-log interpolation), or None."""
     if not front or error < front[0][0]:
@@ -113,19 +156,26 @@ def interpolate_log(front, error):
 def equal_error_table(rows, defaults, out):
     """Cycles of each design at default widths relative to each Kim-style
     variant's Pareto front at the same mean error; printed and saved as CSV."""
-    lines = ["scene,design,mean_error,cycles,table_bits,reference,reference_cycles,ratio"]
+    lines = ["scene,design,mean_error,cycles,table_bits,total_area_um2,reference,reference_cycles,"
+             "ratio,reference_area_um2,area_ratio"]
     for scene in sorted({r["scene"] for r in rows}):
         srows = [r for r in rows if r["scene"] == scene]
         for ref in ("kim-iter", "kim-pipe"):
             front = pareto([(r["error_mean"], r["cycles"]) for r in srows if r["design"] == ref])
+            area_front = pareto([(r["error_mean"], r["total_area_um2"]) for r in srows
+                                 if r["design"] == ref and r["total_area_um2"]])
             for d in designs_in(srows):
                 own = [r for r in srows if r["design"] == d and is_default(r, defaults)]
                 if d == ref or not own or not front:
                     continue
                 need = interpolate_log(front, own[0]["error_mean"])
+                area = own[0]["total_area_um2"]
+                need_area = interpolate_log(area_front, own[0]["error_mean"])
                 lines.append(f"{scene},{d},{own[0]['error_mean']:.4e},{int(own[0]['cycles'])},"
-                             f"{int(own[0]['table_bits'])},{ref},"
-                             + (f"{need:.0f},{own[0]['cycles'] / need:.3f}" if need else "n/a,n/a"))
+                             f"{int(own[0]['table_bits'])},{f'{area:.0f}' if area else 'n/a'},{ref},"
+                             + (f"{need:.0f},{own[0]['cycles'] / need:.3f}" if need else "n/a,n/a") + ","
+                             + (f"{need_area:.0f},{area / need_area:.3f}" if area and need_area
+                                else "n/a,n/a"))
     path = os.path.join(out, "equal_error.csv")
     with open(path, "w") as f:
         f.write("\n".join(lines) + "\n")
@@ -250,6 +300,7 @@ def main():
     out = dirs[0]
     caption = "sweep of " + "; ".join(meta)
     speed_vs_error(rows, out, caption)
+    area_vs_error(rows, out, caption)
     fig8(rows, defaults, out, caption)
     equal_error_table(rows, defaults, out)
     fig9(rows, defaults, out, caption)

@@ -68,6 +68,7 @@ class Bench : public sc_core::sc_module {
     dut.segment_log2_i(segment_log2);
     dut.density_log2_i(density_log2);
     dut.correction_i(correction);
+    dut.kim_pipelined_i(kim_pipelined);
     dut.frag_valid_o(frag_valid);
     dut.frag_ready_i(frag_ready);
     dut.frag_x_o(frag_x);
@@ -211,6 +212,7 @@ class Bench : public sc_core::sc_module {
       segment_log2.write(job.design->subdivision == 16 ? 4u : job.design->subdivision == 8 ? 3u : 0u);
       density_log2.write(job.design->density == 4 ? 2u : job.design->density == 2 ? 1u : 0u);
       correction.write(job.design->correction);
+      kim_pipelined.write(job.design->kind == Design::Kind::Kim && job.design->pipelined);
       tri_valid.write(true);
       presenting_ = true;
       current_ = next_job_++;
@@ -245,7 +247,7 @@ class Bench : public sc_core::sc_module {
   sc_core::sc_signal<bool> rst_n{"rst_n"}, tri_valid{"tri_valid"}, tri_ready{"tri_ready"};
   sc_core::sc_signal<uint32_t> tri_x[3], tri_y[3], tri_q[3], tri_u[3], tri_v[3];
   sc_core::sc_signal<uint32_t> viewport_width, viewport_height, kind, segment_log2, density_log2;
-  sc_core::sc_signal<bool> correction, frag_valid, frag_ready, rec_valid, rec_ready;
+  sc_core::sc_signal<bool> correction, kim_pipelined, frag_valid, frag_ready, rec_valid, rec_ready;
   sc_core::sc_signal<uint32_t> frag_x, frag_y, frag_flags;
   sc_core::sc_signal<uint64_t> frag_u, frag_v, rec_cycles;
   sc_core::sc_signal<uint32_t> rec_lines, rec_bands, rec_pixels, rec_flags;

@@ -79,12 +79,15 @@ std::vector<const Design*> designs_for(const std::string& name) {
       if (has_rtl(d)) out.push_back(&d);
     return out;
   }
-  const Design& d = find_design(name);
-  if (!has_rtl(d))
-    throw std::invalid_argument(fmt::format(
-        "design '{}' has no RTL yet; the RTL implements {} (or 'mix': each in turn)", name,
-        rtl_design_names()));
-  out.push_back(&d);
+  // One design, or a comma-separated list taken in turn like mix.
+  for (const Design& listed : parse_design_list(name)) {
+    const Design& d = find_design(listed.name);
+    if (!has_rtl(d))
+      throw std::invalid_argument(fmt::format(
+          "design '{}' has no RTL yet; the RTL implements {} (or 'mix': each in turn)", d.name,
+          rtl_design_names()));
+    out.push_back(&d);
+  }
   return out;
 }
 
@@ -256,7 +259,7 @@ int verify_widths(const VerifyRequest& request) {
     throw;
   } catch (const std::exception& e) {
     throw_if_interrupted();
-    std::cerr << "cdsim size --verify: error: " << e.what() << '\n';
+    std::cerr << "cdsim: RTL check: error: " << e.what() << '\n';
     return 2;
   }
 }

@@ -7,6 +7,7 @@
 #include <tuple>
 
 #include "derived_widths.hpp"
+#include "kim_datapath.hpp"
 #include "test_support.hpp"
 
 namespace cdsim {
@@ -219,12 +220,20 @@ TEST(UnitBehaviour, KimAndAffineCyclesOfAHandWorkedTriangle) {
       {{{{0, 0, 2.0, 0, 0}}, {{8, 0, 2.0, 64, 0}}, {{0, 8, 2.0, 0, 64}}}});
   const UnitTriangle t = to_unit(s, w, 0);
   const int64_t columns = 8, spans = 7, pixels = 28, span_division = 16;
-  // kim-iter: every pixel takes max(integer steps, 8 fraction cycles) = 8.
-  const int64_t kim_iter = kSetup + columns + spans * span_division + pixels * 8;
-  // kim-pipe: the first pixel of a span 1 cycle, each later one 8 unit steps; drain 8.
-  int64_t pipe_pixels = 0;
-  for (int64_t n = 1; n <= 7; ++n) pipe_pixels += 1 + 8 * (n - 1);
-  const int64_t kim_pipe = kSetup + columns + spans * span_division + pipe_pixels + 8;
+  // Kim, by hand (docs/designs.md): a span's column cycle, its division
+  // (out_int cycles), then its first pixel is handed to the fraction stage in
+  // the next cycle; each later pixel n cycles after the one before, n = max(1,
+  // steps) here = 8, and at least kim_frac for kim-iter. The fraction stage
+  // offers a fragment kim_frac cycles after its hand-off. The empty column 7
+  // takes the cycle after column 6's only hand-off, so the unit then waits
+  // kim_frac - 1 more cycles for the last fragment.
+  int64_t spans_8 = 0;  // each span: column, division, first pixel, 8 per later pixel
+  for (int64_t n = 1; n <= 7; ++n) spans_8 += 1 + span_division + 1 + 8 * (n - 1);
+  const int64_t kim_pipe = kSetup + spans_8 + 1 + (8 - 1);
+  // kim-iter: 8 fraction cycles never hold the integer stage back here (the
+  // later pixels take 8 cycles anyway, the first one of a span 18 after the
+  // span before's last), so it takes the same cycles.
+  const int64_t kim_iter = kim_pipe;
   const std::pair<const char*, int64_t> expected[] = {
       {"kim-iter", kim_iter}, {"kim-pipe", kim_pipe},
       {"affine", kSetup + columns + pixels},
@@ -238,12 +247,86 @@ TEST(UnitBehaviour, KimAndAffineCyclesOfAHandWorkedTriangle) {
     EXPECT_EQ(r.cycles, cycles) << name;
   }
   // Unrolling four unit steps per cycle: each later pixel of a span takes 2 cycles.
-  w.kim_unroll = 4;
-  int64_t unrolled = 0;
-  for (int64_t n = 1; n <= 7; ++n) unrolled += 1 + 2 * (n - 1);
-  TriangleRecord r;
-  testing::run_unit(find_design("kim-pipe"), w, 64, 64, t, &r);
-  EXPECT_EQ(r.cycles, kSetup + columns + spans * span_division + unrolled + 8);
+  {
+    Widths u = w;
+    u.kim_unroll = 4;
+    int64_t unrolled = 0;
+    for (int64_t n = 1; n <= 7; ++n) unrolled += 1 + span_division + 1 + 2 * (n - 1);
+    TriangleRecord r;
+    testing::run_unit(find_design("kim-pipe"), u, 64, 64, t, &r);
+    EXPECT_EQ(r.cycles, kSetup + unrolled + 1 + (8 - 1));
+  }
+  // A slow iterative fraction stage (kim_frac 16) and a short division
+  // (out_int 8, |u|, |v| <= 64 still fit): kim-iter hands off a pixel every 16
+  // cycles from the first one on (cycle 1 + 8 of the walk), span starts
+  // included, since a span start's 1 + 8 + 1 cycles are fewer. The last of
+  // the 28 fragments comes 16 cycles after the last hand-off.
+  {
+    Widths slow = w;
+    slow.kim_frac = 16;
+    slow.out_int = 8;
+    const UnitTriangle ts = to_unit(s, slow, 0);
+    TriangleRecord r;
+    testing::run_unit(find_design("kim-iter"), slow, 64, 64, ts, &r);
+    EXPECT_EQ(r.cycles, kSetup + (1 + 8) + 16 * (pixels - 1) + 16 + 1);
+    // kim-pipe at the same widths: 1 + 8 + 1 + 8 (n - 1) per span, column 7,
+    // then 16 - 1 cycles for the last fragment.
+    int64_t pipe = 0;
+    for (int64_t n = 1; n <= 7; ++n) pipe += 1 + 8 + 1 + 8 * (n - 1);
+    testing::run_unit(find_design("kim-pipe"), slow, 64, 64, ts, &r);
+    EXPECT_EQ(r.cycles, kSetup + pipe + 1 + (16 - 1));
+  }
+}
+
+TEST(UnitBehaviour, KimPixelWithDepthOutHoldsTheIntegerPart) {
+  // q = 2 - minor along the span (q <= 0 from minor 2 on), U = 20.5 q and
+  // V = -3.25 q texels, 8 fraction bits: u = 20.5, v = -3.25 where q > 0.
+  const Widths w;
+  cdsim::Setup s;
+  s.q.at_ref = 2;
+  s.q.per_minor = -1;
+  s.u.at_ref = 2 * 5248;  // 20.5 * 2^8 = 5248
+  s.u.per_minor = -5248;
+  s.v.at_ref = 2 * -832;  // -3.25 * 2^8 = -832
+  s.v.per_minor = 832;
+  uint32_t flags = 0;
+  const KimPixel first = kim_pixel(s, 0, 0, w, nullptr, &flags);
+  EXPECT_EQ(flags, 0u);
+  EXPECT_EQ(first.integer_u, 20);
+  EXPECT_EQ(first.integer_v, -4);  // floor(-3.25)
+  EXPECT_EQ(first.value.u, 20 * 256 + 128);
+  EXPECT_EQ(first.value.v, -3 * 256 - 64);
+  // q = 0: depth_range, output 0, and the iteration keeps I (no steps).
+  const KimPixel held = kim_pixel(s, 0, 2, w, &first, &flags);
+  EXPECT_EQ(flags, flag::kDepthRange);
+  EXPECT_TRUE(held.depth_out);
+  EXPECT_EQ(held.integer_u, 20);
+  EXPECT_EQ(held.integer_v, -4);
+  EXPECT_EQ(held.value.u, 0);
+  EXPECT_EQ(held.value.v, 0);
+  EXPECT_FALSE(held.value.saturated);
+  // At a span's first pixel the span division sets I = 0.
+  const KimPixel start = kim_pixel(s, 0, 3, w, nullptr, &flags);
+  EXPECT_TRUE(start.depth_out);
+  EXPECT_EQ(start.integer_u, 0);
+  EXPECT_EQ(start.integer_v, 0);
+}
+
+TEST(UnitBehaviour, KimPixelSaturatesOutsideTheIntegerRegister) {
+  // u = 40000 texels > 2^15 - 1: I clamps to the out_int register's max and
+  // the output saturates with a flag; v = -40000 to the min.
+  const Widths w;
+  cdsim::Setup s;
+  s.q.at_ref = 1;
+  s.u.at_ref = int64_t{40000} << w.uv_in_frac;
+  s.v.at_ref = -(int64_t{40000} << w.uv_in_frac);
+  uint32_t flags = 0;
+  const KimPixel p = kim_pixel(s, 0, 0, w, nullptr, &flags);
+  EXPECT_EQ(p.integer_u, (1 << 15) - 1);
+  EXPECT_EQ(p.integer_v, -(1 << 15));
+  EXPECT_TRUE(p.value.saturated);
+  EXPECT_EQ(p.value.u, (int64_t{1} << 23) - 1);
+  EXPECT_EQ(p.value.v, -(int64_t{1} << 23));
 }
 
 TEST(UnitBehaviour, AffineSubdivisionStallsWhenSegmentsAreShorterThanTheDivider) {

@@ -1,0 +1,289 @@
+#include "choose.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <limits>
+#include <optional>
+#include <stdexcept>
+
+#include "area.hpp"
+#include "cache_files.hpp"
+#include "cli_checks.hpp"
+#include "common.hpp"
+#include "interrupt.hpp"
+#include "regress.hpp"
+#include "report.hpp"
+#include "size.hpp"
+
+namespace cdsim {
+
+namespace {
+
+// One design's answer.
+struct Candidate {
+  Design design;
+  bool meets = false;
+  Widths widths;
+  double error = 0;          // the worst scene's measure
+  int64_t cycles = 0;        // summed over the scenes
+  int64_t pixels = 0;
+  int64_t unbanded_cycles = 0;  // with a table deep enough for every band (table designs)
+  std::optional<AreaReport> area;
+  std::string table;         // "sram", "flops" or "" (no table)
+  double total_area_um2 = 0;  // logic + the cheaper table
+  std::string rtl_verified = "not run";  // "yes", "no", "not run", "no RTL"
+};
+
+int64_t total(const std::vector<DesignResult>& results, int64_t DesignResult::*field) {
+  int64_t sum = 0;
+  for (const DesignResult& r : results) sum += r.*field;
+  return sum;
+}
+
+// The widths sizing chose, as NAME=VALUE for the ones the design's accuracy
+// or table depends on, and any the user set.
+std::string sized_widths(const Candidate& c) {
+  const Widths defaults;
+  std::string out;
+  for (const auto& p : param_table()) {
+    const int value = c.widths.*(p.field);
+    if (value == defaults.*(p.field)) continue;
+    out += fmt::format("{}{}={}", out.empty() ? "" : " ", p.name, value);
+  }
+  return out.empty() ? "defaults" : out;
+}
+
+nlohmann::json widths_json(const Widths& w) {
+  nlohmann::json out;
+  for (const auto& p : param_table()) out[p.name] = w.*(p.field);
+  return out;
+}
+
+}  // namespace
+
+CLI::App* add_choose_command(CLI::App& app, ChooseOptions& options) {
+  CLI::App* cmd = app.add_subcommand(
+      "choose", "the cheapest design for an accuracy target: size, synthesise and rank every design");
+  cmd->add_option("scenes", options.scenes,
+                  "scenes the target must hold on, each as for --scene (default: the embedded scene)");
+  cmd->add_option("--camera", options.scene_options.camera, "as for run, applied to every scene");
+  cmd->add_option("--spawn", options.scene_options.spawn, "as for run, applied to every scene")
+      ->check(CLI::Range(0, 1000000));
+  cmd->add_option("--resolution", options.scene_options.resolution, "WxH viewport, every scene");
+  cmd->add_option("--design", options.designs, "comma-separated designs (default: all)");
+  cmd->add_option("--set", options.settings,
+                  "NAME=VALUE: a width sizing keeps (the output format, subpixel and input bits, "
+                  "latencies); repeatable");
+  cmd->add_option("--max-error", options.max_error, "error target, > 0 (texels, or footprint-normalised)")
+      ->required()
+      ->check(cli::number_in(0, std::numeric_limits<double>::infinity(), true));
+  cmd->add_option("--metric", options.metric, "texels, or footprint (error / max(1, rho))")
+      ->check(CLI::IsMember({"texels", "footprint"}))
+      ->capture_default_str();
+  cmd->add_option("--statistic", options.statistic, "which per-pixel statistic must meet it")
+      ->check(CLI::IsMember({"max", "p99", "mean"}))
+      ->capture_default_str();
+  cmd->add_option("--max-slowdown", options.max_slowdown,
+                  "a smaller table that bands and refills is taken while its cycles stay within "
+                  "this factor of an unbanded table's")
+      ->check(cli::number_in(1.0, 1000.0))
+      ->capture_default_str();
+  cmd->add_option("--json", options.json_path, "also write the ranking as JSON to this file");
+  cmd->add_flag("!--no-verify", options.verify, "do not regress the winner on the RTL");
+  cmd->add_option("--verify-random", options.verify_random,
+                  "random triangles the winner's RTL check adds after the scenes")
+      ->check(cli::unsigned_in(0, 10'000'000))
+      ->capture_default_str();
+  cmd->add_option("--verify-backpressure", options.verify_backpressure,
+                  "probability that the fragment sink stalls a cycle in the RTL check")
+      ->check(cli::number_in(0.0, 0.95))
+      ->capture_default_str();
+  cmd->add_option("--rtl-cache", options.rtl_cache, "folder of verilated units (as cdsim regress)");
+  cmd->add_option("--area-cache", options.area_cache, "folder of synthesis results (as cdsim area --cache)");
+  return cmd;
+}
+
+int run_choose_command(const ChooseOptions& options) {
+  if (options.metric == "footprint" && options.statistic != "max")
+    throw std::invalid_argument("the footprint metric is kept as a maximum only: use --statistic max");
+  Widths user;
+  apply_settings(user, options.settings);
+  validate(user);
+  const std::vector<Design> designs = options.designs.empty() ? all_designs() : designs_from(options.designs);
+  if (!options.json_path.empty()) check_output_folder("--json", options.json_path);
+  const std::vector<std::string> scene_names =
+      options.scenes.empty() ? std::vector<std::string>{"default"} : options.scenes;
+  std::vector<PreparedScene> scenes;
+  for (const std::string& name : scene_names)
+    scenes.push_back(prepare(load_scene(name, options.scene_options), user));
+  std::vector<const PreparedScene*> scene_list;
+  for (const PreparedScene& s : scenes) scene_list.push_back(&s);
+
+  const ErrorTarget target{options.max_error, options.metric, options.statistic};
+  fmt::print("choose: the cheapest design with {} {} error <= {} on every scene\n", options.statistic,
+             options.metric, options.max_error);
+  for (const PreparedScene& s : scenes)
+    fmt::print("scene: {} ({} triangles, {}x{}; {})\n", s.scene.name, s.scene.triangles.size(),
+               s.scene.width, s.scene.height, s.scene.description);
+  fmt::print("fixed widths: {}\nbuild: {}\nseed: none (deterministic); RTL check seed 1\n\n",
+             options.settings.empty() ? "defaults" : describe(user), build_id());
+  std::fflush(stdout);
+
+  // Size every design; for a table design, shrink the table while banding
+  // keeps the cycles within the budget.
+  std::vector<Candidate> candidates;
+  for (size_t k = 0; k < designs.size(); ++k) {
+    const Design& d = designs[k];
+    fmt::print(stderr, "choose: sizing {} ({}/{}) ...", d.name, k + 1, designs.size());
+    const auto start = std::chrono::steady_clock::now();
+    Candidate c;
+    c.design = d;
+    const Sizing sizing = size_design(d, scene_list, user, target);
+    c.meets = sizing.reachable && sizing.error <= target.max_error;
+    c.widths = sizing.widths;
+    c.error = sizing.error;
+    c.cycles = total(sizing.results, &DesignResult::cycles);
+    c.pixels = total(sizing.results, &DesignResult::pixels);
+    c.unbanded_cycles = c.cycles;
+    if (c.meets && d.kind == Design::Kind::ConstantDepth) {
+      const int minimum = 4;  // widths.def's table_depth minimum
+      for (int depth = c.widths.table_depth / 2; depth >= minimum; depth /= 2) {
+        Widths trial = c.widths;
+        trial.table_depth = depth;
+        double error = 0;
+        int64_t cycles = 0, pixels = 0;
+        for (const PreparedScene* s : scene_list) {
+          const DesignResult r = evaluate(*s, d, trial);
+          error = std::max(error, target_measure(r, target));
+          cycles += r.cycles;
+          pixels += r.pixels;
+        }
+        if (error > target.max_error ||
+            double(cycles) > options.max_slowdown * double(c.unbanded_cycles))
+          break;  // a smaller table only bands more
+        c.widths = trial;
+        c.error = error;
+        c.cycles = cycles;
+        c.pixels = pixels;
+      }
+    }
+    fmt::print(stderr, " {} in {:.1f} s ({} model runs)\n", c.meets ? "sized" : "cannot meet the target",
+               std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+               sizing.evaluations);
+    candidates.push_back(c);
+  }
+
+  // Synthesise every design that meets the target and has RTL.
+  AreaOptions area_options;
+  area_options.cache_dir = options.area_cache;
+  std::vector<AreaJob> jobs;
+  for (const Candidate& c : candidates)
+    if (c.meets && has_rtl(c.design)) jobs.push_back({c.design, c.widths});
+  const std::vector<AreaReport> areas = synthesise_areas(jobs, area_options, 0);
+  for (size_t i = 0, a = 0; i < candidates.size(); ++i) {
+    Candidate& c = candidates[i];
+    if (!c.meets) continue;
+    if (!has_rtl(c.design)) {
+      c.rtl_verified = "no RTL";
+      continue;
+    }
+    c.area = areas[a++];
+    c.total_area_um2 = c.area->logic_area_um2;
+    if (c.area->sram_bits > 0) {
+      const bool flops = c.area->flop_table_area_um2 < c.area->sram_area_um2;
+      c.table = flops ? "flops" : "sram";
+      c.total_area_um2 += flops ? c.area->flop_table_area_um2 : c.area->sram_area_um2;
+    }
+  }
+  // Ranked: designs that meet the target with an area, by area then cycles;
+  // then those without RTL; then those that cannot meet it.
+  const auto group = [](const Candidate& c) { return !c.meets ? 2 : c.area ? 0 : 1; };
+  std::stable_sort(candidates.begin(), candidates.end(), [&](const Candidate& a, const Candidate& b) {
+    if (group(a) != group(b)) return group(a) < group(b);
+    if (group(a) == 0 && a.total_area_um2 != b.total_area_um2) return a.total_area_um2 < b.total_area_um2;
+    return a.cycles < b.cycles;
+  });
+
+  // The winner on the RTL: every scene, then random triangles, with back-pressure.
+  if (options.verify && !candidates.empty() && group(candidates.front()) == 0) {
+    Candidate& winner = candidates.front();
+    fmt::print("verify: {} on the RTL at its widths, against the model\n", winner.design.name);
+    std::fflush(stdout);
+    bool ok = true;
+    for (size_t s = 0; s < scene_names.size() && ok; ++s) {
+      rtl::VerifyRequest request;
+      request.widths = winner.widths;
+      request.scene = scene_names[s];
+      request.scene_options = options.scene_options;
+      request.design = winner.design.name;
+      request.random = s + 1 == scene_names.size() ? options.verify_random : 0;
+      request.backpressure = options.verify_backpressure;
+      request.rtl_cache = options.rtl_cache;
+      ok = rtl::verify_widths(request) == 0;
+    }
+    winner.rtl_verified = ok ? "yes" : "no";
+    fmt::print("\n");
+  }
+
+  fmt::print("{:<4} {:<17} {:<5} {:>13} {:>13} {:<6} {:>12} {:>9} {:>10}  {}\n", "rank", "design", "meets",
+             "total um^2", "logic um^2", "table", "cycles", "cyc/pixel", "error", "widths (other than default)");
+  int rank = 0;
+  for (const Candidate& c : candidates) {
+    const std::string place = group(c) == 0 ? fmt::format("{}", ++rank) : "-";
+    if (!c.meets) {
+      fmt::print("{:<4} {:<17} {:<5} {:>13} {:>13} {:<6} {:>12} {:>9} {:>10.4g}  {}\n", place, c.design.name,
+                 "no", "-", "-", "-", "-", "-", c.error, "not reachable: the error at the widest widths");
+      continue;
+    }
+    const std::string area = c.area ? fmt::format("{:.0f}", c.total_area_um2) : "no RTL";
+    const std::string logic = c.area ? fmt::format("{:.0f}", c.area->logic_area_um2) : "-";
+    fmt::print("{:<4} {:<17} {:<5} {:>13} {:>13} {:<6} {:>12} {:>9.3f} {:>10.4g}  {}\n", place,
+               c.design.name, "yes", area, logic, c.table.empty() ? "none" : c.table, c.cycles,
+               c.pixels ? double(c.cycles) / double(c.pixels) : 0.0, c.error, sized_widths(c));
+  }
+  if (!candidates.empty() && group(candidates.front()) == 0)
+    fmt::print("\nwinner: {} at {:.0f} um^2 ({} cycles); RTL check: {}\n", candidates.front().design.name,
+               candidates.front().total_area_um2, candidates.front().cycles,
+               candidates.front().rtl_verified);
+  else
+    fmt::print("\nno design with RTL meets the target\n");
+
+  if (!options.json_path.empty()) {
+    nlohmann::json json;
+    json["target"] = {{"max_error", options.max_error}, {"metric", options.metric},
+                      {"statistic", options.statistic}, {"max_slowdown", options.max_slowdown}};
+    json["scenes"] = nlohmann::json::array();
+    for (const PreparedScene& s : scenes)
+      json["scenes"].push_back({{"name", s.scene.name}, {"triangles", s.scene.triangles.size()},
+                                {"resolution", {s.scene.width, s.scene.height}}});
+    json["build"] = build_id();
+    json["ranking"] = nlohmann::json::array();
+    for (const Candidate& c : candidates) {
+      nlohmann::json row = {{"design", c.design.name},
+                            {"meets", c.meets},
+                            {"total_area_um2", c.area ? nlohmann::json(c.total_area_um2) : nlohmann::json()},
+                            {"cycles", c.cycles},
+                            {"pixels", c.pixels},
+                            {"error", c.error},
+                            {"widths", widths_json(c.widths)},
+                            {"rtl_verified", c.rtl_verified == "yes"}};
+      row["rtl_check"] = c.rtl_verified;
+      if (c.area) {
+        row["area"] = area_summary_json(*c.area);
+        row["table"] = c.table.empty() ? nlohmann::json() : nlohmann::json(c.table);
+        row["unbanded_cycles"] = c.unbanded_cycles;
+      }
+      json["ranking"].push_back(row);
+    }
+    write_file_atomic(options.json_path, json.dump(2) + '\n');
+    fmt::print("wrote {}\n", options.json_path);
+  }
+  const bool winner_failed = !candidates.empty() && candidates.front().rtl_verified == "no";
+  return winner_failed ? 1 : 0;
+}
+
+}  // namespace cdsim

@@ -1,0 +1,36 @@
+// cdsim choose: which design is cheapest for an accuracy target. For every
+// design: size its widths on every scene given (cdsim size's search), pick
+// the smallest scanline table whose banding keeps the cycles within a budget,
+// synthesise the result (cdsim area), and rank the designs by total area,
+// then cycles. The winner is then checked on the RTL (cdsim regress at its
+// widths). docs/choose.md describes the search and its choices.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <string>
+#include <vector>
+
+#include "scene.hpp"
+
+namespace cdsim {
+
+struct ChooseOptions {
+  std::vector<std::string> scenes;  // default: {"default"}
+  SceneOptions scene_options;       // applied to every scene
+  std::string designs;              // default: every design
+  std::vector<std::string> settings;  // the unit's interface widths the user fixes
+  double max_error = 0.5;
+  std::string metric = "texels";
+  std::string statistic = "max";
+  double max_slowdown = 1.10;  // cycles of a banded table over those of an unbanded one
+  std::string json_path;
+  bool verify = true;          // regress the winner on the RTL
+  size_t verify_random = 500;
+  double verify_backpressure = 0.3;
+  std::string rtl_cache, area_cache;
+};
+
+CLI::App* add_choose_command(CLI::App& app, ChooseOptions& options);
+int run_choose_command(const ChooseOptions& options);
+
+}  // namespace cdsim

@@ -1,0 +1,99 @@
+#!/usr/bin/env bash
+# Area where users read it: `run --area`, `sweep --area` and `choose`.
+# Each figure must be the one `cdsim area` gives for the same design and
+# widths (the synthesis cache makes that check free), every design `choose`
+# says meets the target must meet it when `cdsim run` measures it at the
+# widths it printed, the ranking must be ordered by total area, and the
+# winner must have passed its RTL check.
+# Usage: check_area_reports.sh CDSIM WORKDIR "NARROW SETTINGS" [AREA_CACHE]
+# AREA_CACHE: a synthesis cache to share (rtl_synth_design_blocks fills one
+# with affine and divide at the same narrow widths).
+set -euo pipefail
+cdsim=$1 work=$2 narrow=$3 shared=${4:-}
+rm -rf "$work" && mkdir -p "$work/cache/cdsim"
+export XDG_CACHE_HOME=$work/cache  # run and sweep synthesise into the default cache
+if [[ -n $shared ]]; then
+  mkdir -p "$shared" && ln -s "$(realpath "$shared")" "$work/cache/cdsim/area"
+fi
+args=()
+for s in $narrow; do args+=(--set "$s"); done
+scene=$(dirname "$0")/data/small_scene.tri
+
+"$cdsim" run --scene "$scene" --design affine,divide "${args[@]}" --area --json "$work/run.json" > "$work/run.txt"
+for d in affine divide; do
+  "$cdsim" area --design "$d" "${args[@]}" --json "$work/area_$d.json" > /dev/null
+done
+"$cdsim" sweep --scene "$scene" --design affine,divide "${args[@]}" --area \
+  --out "$work/sweep" > "$work/sweep.txt"
+"$(dirname "$0")/../scripts/plot" "$work/sweep" > "$work/plot.txt"
+"$cdsim" choose "$scene" --design affine,divide "${args[@]}" --metric footprint --max-error 100 \
+  --verify-random 50 --json "$work/choose.json" > "$work/choose.txt"
+
+/usr/bin/python3 - "$work" "$cdsim" "$scene" <<'PY'
+import csv, json, subprocess, sys
+work, cdsim, scene = sys.argv[1:4]
+failures = []
+def expect(cond, what):
+    print(("ok   " if cond else "FAIL ") + what)
+    if not cond: failures.append(what)
+def close(a, b):
+    return abs(a - b) <= 1e-6 * max(1.0, abs(b))
+keys = ["logic_area_um2", "sram_bits", "sram_area_um2", "total_area_um2"]
+
+run = json.load(open(f"{work}/run.json"))
+for row in run["designs"]:
+    d = row["name"]
+    area = json.load(open(f"{work}/area_{d}.json"))
+    expect(set(area) <= set(row["area"]), f"run --json: {d}'s 'area' holds every key of cdsim area --json")
+    expect(all(close(row["area"][k], area[k]) for k in keys), f"run --area: {d} as cdsim area reports it")
+text = open(f"{work}/run.txt").read()
+expect(f"{area['total_area_um2']:.0f}" in text, "run --area prints the total in its table")
+
+rows = list(csv.DictReader(open(f"{work}/sweep/sweep.csv")))
+expect(len(rows) == 2, "sweep: two configurations")
+for r in rows:
+    area = json.load(open(f"{work}/area_{r['design']}.json"))
+    expect(all(close(float(r[k]), area[k]) for k in keys), f"sweep --area: {r['design']} as cdsim area reports it")
+    expect(close(float(r["total_area_um2"]), float(r["logic_area_um2"]) + float(r["sram_area_um2"])),
+           "sweep: total = logic + SRAM")
+sweep = json.load(open(f"{work}/sweep/sweep.json"))
+expect(all("area" in r for r in sweep["rows"]), "sweep.json: every row has its area")
+
+import os
+expect(os.path.getsize(f"{work}/sweep/area_vs_error.png") > 10000, "plot: area_vs_error.png drawn")
+expect("wrote" in open(f"{work}/plot.txt").read() and "area plots skipped" not in open(f"{work}/plot.txt").read(),
+       "plot: the sweep's area is used")
+header = open(f"{work}/sweep/equal_error.csv").readline().strip().split(",")
+expect("total_area_um2" in header and "area_ratio" in header, "equal_error.csv has area columns")
+
+choose = json.load(open(f"{work}/choose.json"))
+ranking = choose["ranking"]
+expect(len(ranking) == 2, "choose: both designs ranked")
+met = [r for r in ranking if r["meets"]]
+expect(len(met) == 2, "choose: both meet a footprint error of 100")
+areas = [r["total_area_um2"] for r in met]
+expect(areas == sorted(areas), f"choose: ranked by total area {areas}")
+for r in met:
+    for key in ["design", "meets", "total_area_um2", "cycles", "error", "widths", "rtl_verified"]:
+        expect(key in r, f"choose: {r['design']} has '{key}'")
+    sets = []
+    for name, value in r["widths"].items():
+        sets += ["--set", f"{name}={value}"]
+    out = subprocess.run([cdsim, "run", "--scene", scene, "--design", r["design"], *sets,
+                          "--json", f"{work}/check_{r['design']}.json"], capture_output=True, text=True)
+    expect(out.returncode == 0, f"choose: cdsim run at {r['design']}'s widths ({out.stderr.strip()})")
+    measured = json.load(open(f"{work}/check_{r['design']}.json"))["designs"][0]
+    expect(measured["name"] == r["design"], f"choose: run measured {r['design']}")
+    expect(close(measured["error"]["footprint_max"], r["error"]), f"choose: {r['design']}'s error is what run measures")
+    expect(measured["error"]["footprint_max"] <= 100, f"choose: {r['design']} meets the target when run measures it")
+    expect(measured["cycles"] == r["cycles"], f"choose: {r['design']}'s cycles are what run counts")
+    out = subprocess.run([cdsim, "area", "--design", r["design"], *sets, "--cache", f"{work}/cache/cdsim/area",
+                          "--json", f"{work}/check_area_{r['design']}.json"], capture_output=True, text=True)
+    expect(out.returncode == 0, f"choose: cdsim area at {r['design']}'s widths")
+    area = json.load(open(f"{work}/check_area_{r['design']}.json"))
+    expect(close(area["total_area_um2"], r["total_area_um2"]), f"choose: {r['design']}'s area is what cdsim area synthesises")
+expect(ranking[0]["rtl_verified"] is True, "choose: the winner passed its RTL check")
+expect("winner: " + ranking[0]["design"] in open(f"{work}/choose.txt").read(), "choose prints the winner")
+sys.exit(1 if failures else 0)
+PY
+echo PASS
