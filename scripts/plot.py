@@ -79,25 +79,30 @@ def finish(fig, path, caption):
     print(f"wrote {path}")
 
 
+def pareto_panel(ax, rows, metric, cost, xlabel, ylabel):
+    """Every design's points of cost against `metric`, and its Pareto front, log-log."""
+    for d in designs_in(rows):
+        color, marker = FAMILY_STYLE.get(d, ("k", "."))
+        pts = [(r[metric], cost(r)) for r in rows if r["design"] == d and r[metric] > 0]
+        if not pts:
+            continue
+        ax.scatter([p[0] for p in pts], [p[1] for p in pts], s=14, color=color, marker=marker,
+                   alpha=0.5)
+        front = pareto(pts)
+        ax.plot([p[0] for p in front], [p[1] for p in front], color=color, label=d, lw=1.5,
+                drawstyle="steps-post")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.grid(True, which="both", alpha=0.3)
+
+
 def speed_vs_error(rows, out, caption):
     fig, axes = plt.subplots(1, 2, figsize=(13, 5.5))
     for ax, metric, label in ((axes[0], "error_mean", "mean error (texels)"),
                               (axes[1], "error_max", "max error (texels)")):
-        for d in designs_in(rows):
-            color, marker = FAMILY_STYLE.get(d, ("k", "."))
-            pts = [(r[metric], r["cycles"]) for r in rows if r["design"] == d and r[metric] > 0]
-            if not pts:
-                continue
-            ax.scatter([p[0] for p in pts], [p[1] for p in pts], s=14, color=color, marker=marker,
-                       alpha=0.5)
-            front = pareto(pts)
-            ax.plot([p[0] for p in front], [p[1] for p in front], color=color, label=d, lw=1.5,
-                    drawstyle="steps-post")
-        ax.set_xscale("log")
-        ax.set_yscale("log")
-        ax.set_xlabel(label)
-        ax.set_ylabel("cycles (scene total)")
-        ax.grid(True, which="both", alpha=0.3)
+        pareto_panel(ax, rows, metric, lambda r: r["cycles"], label, "cycles (scene total)")
     axes[0].legend(fontsize=7, ncol=2)
     fig.suptitle("Speed against error; lines are each design's Pareto front")
     finish(fig, os.path.join(out, "cycles_vs_error.png"), caption)
@@ -119,21 +124,7 @@ def area_vs_error(rows, out, caption):
                lambda r: r["total_area_um2"] * r["cycles"] / max(1.0, r["pixels"]),
                "total area x cycles per pixel (um^2)"))
     for ax, metric, xlabel, cost, ylabel in panels:
-        for d in designs_in(rows):
-            color, marker = FAMILY_STYLE.get(d, ("k", "."))
-            pts = [(r[metric], cost(r)) for r in rows if r["design"] == d and r[metric] > 0]
-            if not pts:
-                continue
-            ax.scatter([p[0] for p in pts], [p[1] for p in pts], s=14, color=color, marker=marker,
-                       alpha=0.5)
-            front = pareto(pts)
-            ax.plot([p[0] for p in front], [p[1] for p in front], color=color, label=d, lw=1.5,
-                    drawstyle="steps-post")
-        ax.set_xscale("log")
-        ax.set_yscale("log")
-        ax.set_xlabel(xlabel)
-        ax.set_ylabel(ylabel)
-        ax.grid(True, which="both", alpha=0.3)
+        pareto_panel(ax, rows, metric, cost, xlabel, ylabel)
     axes[0].legend(fontsize=7, ncol=2)
     fig.suptitle("Cost against error (Yosys onto osu018, SRAM table; docs/area.md); "
                  "lines are each design's Pareto front")
