@@ -1,4 +1,6 @@
 #include "area.hpp"
+#include "area_detail.hpp"
+#include "area_model.hpp"
 
 #include <fmt/format.h>
 
@@ -37,15 +39,6 @@ int log2_of(int value) {
   return bits;
 }
 
-// One module of `stat -liberty` output: its own cell area, own flip-flops, and
-// how many instances of each submodule it holds.
-struct ModuleStat {
-  double own_area = 0;
-  int64_t own_flops = 0;
-  std::map<std::string, int64_t> cells;       // cell type -> count
-  std::map<std::string, int64_t> submodules;  // the cells that are modules
-};
-
 // Yosys writes "=== cd_scan_unit ===" but "Chip area for module '\cd_scan_unit'".
 std::string strip_escape(const std::string& name) {
   return !name.empty() && name[0] == '\\' ? name.substr(1) : name;
@@ -53,6 +46,10 @@ std::string strip_escape(const std::string& name) {
 
 // "$paramod$0123\shift_round", "$paramod\setup_engine\SramDepth=..." and
 // "\column_walker" all name a module by the part after the first backslash.
+}  // namespace
+
+namespace area_detail {
+
 std::string base_name(const std::string& module) {
   const size_t slash = module.find('\\');
   if (slash == std::string::npos) return module;
@@ -96,6 +93,8 @@ std::map<std::string, ModuleStat> parse_stat(const std::string& log) {
   return modules;
 }
 
+namespace {
+
 struct Subtree {
   double area = 0;
   int64_t flops = 0;
@@ -137,6 +136,8 @@ double liberty_cell_area(const std::string& liberty, const std::string& cell) {
   return std::stod(m[1]);
 }
 
+}  // namespace
+
 int run_yosys(const fs::path& script, const fs::path& log) {
   const std::string command =
       fmt::format("yosys -q -l '{}' -s '{}' > /dev/null 2>&1", log.string(), script.string());
@@ -152,9 +153,13 @@ std::string yosys_error(const fs::path& log) {
   return error.empty() ? "see the log" : error;
 }
 
-}  // namespace
+}  // namespace area_detail
 
-AreaReport synthesise_area(const Design& design, const Widths& widths, const AreaOptions& options) {
+using namespace area_detail;
+
+namespace area_detail {
+
+UnitConfig prepare_unit(const Design& design, const Widths& widths, const AreaOptions& options) {
   if (!has_rtl(design))
     throw std::invalid_argument(fmt::format(
         "design '{}' has no RTL yet; cdsim area synthesises {}", design.name, rtl_design_names()));
@@ -162,9 +167,10 @@ AreaReport synthesise_area(const Design& design, const Widths& widths, const Are
   if (!fs::exists(options.liberty))
     throw std::runtime_error(fmt::format(
         "{}: no such liberty file (scripts/setup installs qflow-tech-osu018)", options.liberty));
+  UnitConfig c;
   const DerivedWidths derived = derive(widths);
   // The unit elaborated with this design's hardware only (rtl/cd_scan_unit.sv).
-  const bool has_table = design.kind == Design::Kind::ConstantDepth;
+  c.has_table = design.kind == Design::Kind::ConstantDepth;
   const bool has_divide = design.kind == Design::Kind::Divide;
   const bool has_affine = design.kind == Design::Kind::Affine && design.subdivision == 0;
   const bool has_affine_sub = design.kind == Design::Kind::Affine && design.subdivision != 0;
@@ -173,12 +179,17 @@ AreaReport synthesise_area(const Design& design, const Widths& widths, const Are
   const int segment_log2 = has_affine_sub ? log2_of(design.subdivision) : 4;
   const int density_log2 = log2_of(design.density);
   const int has_correction = design.correction ? 1 : 0;
+  // The reciprocal, reported on its own, is the fill's (in the setup engine)
+  // in the table designs, the pixels' (in pixel_divide) in divide and the end
+  // points' in affine-subN.
+  c.reciprocal_owner = c.has_table ? "setup_engine" : has_divide ? "pixel_divide"
+                       : has_affine_sub ? "affine_sub_datapath" : "";
   const std::string parameters = fmt::format(
       "-set MaxDensityLog2 {} -set HasCorrection {} -set HasTable {:d} -set HasDivide {:d} "
       "-set HasAffine {:d} -set HasAffineSub {:d} -set MaxSegmentLog2 {} -set HasKimIter {:d} "
       "-set HasKimPipe {:d} -set HasObservation 0",
-      density_log2, has_correction, has_table, has_divide, has_affine, has_affine_sub, segment_log2,
-      has_kim_iter, has_kim_pipe);
+      density_log2, has_correction, c.has_table, has_divide, has_affine, has_affine_sub,
+      segment_log2, has_kim_iter, has_kim_pipe);
 
   // Every RTL source, in name order, so that the hash is stable.
   const fs::path rtl_dir = kRtlDir;
@@ -186,141 +197,98 @@ AreaReport synthesise_area(const Design& design, const Widths& widths, const Are
   for (const auto& entry : fs::directory_iterator(rtl_dir))
     if (entry.path().extension() == ".sv") sources.push_back(entry.path());
   std::sort(sources.begin(), sources.end());
-  const std::string header = rtl_header(widths, "area");
+  c.header = rtl_header(widths, "area");
   uint64_t hash = fnv1a(kFlowVersion);
-  hash = fnv1a(header, hash);
+  hash = fnv1a(c.header, hash);
   hash = fnv1a(fmt::format("{} {}", parameters, options.liberty), hash);
   for (const fs::path& source : sources) hash = fnv1a(read_text_file(source), hash);
 
   const fs::path cache = options.cache_dir.empty() ? cache_root("area") : fs::path(options.cache_dir);
-  const fs::path dir = cache / fmt::format("{:016x}", hash);
-  fs::create_directories(dir);
-  const fs::path result_path = dir / "result.json";
+  c.dir = cache / fmt::format("{:016x}", hash);
+  fs::create_directories(c.dir);
+  c.sram_depth = c.has_table ? int64_t{widths.table_depth} << density_log2 : 0;
+  c.word_bits = derived.word_bits;
+  c.flop_lines = std::min<int64_t>(c.sram_depth, 64);  // 0: no table
 
+  std::string unit_sources;
+  for (const fs::path& source : sources)
+    if (source.filename() != "scanline_table.sv") unit_sources += " " + source.string();
+  const std::string include = fmt::format("-I{} -I{}", c.dir.string(), rtl_dir.string());
+  // The unit, with the scanline table as a black box (it is SRAM).
+  c.unit_front = fmt::format(
+      "read_verilog -sv -DSYNTHESIS {inc}{src}\n"
+      "read_verilog -sv -lib {inc} {rtl}/scanline_table.sv\n"
+      "chparam {p} cd_scan_unit\n"
+      "hierarchy -check -top cd_scan_unit\n",
+      fmt::arg("inc", include), fmt::arg("src", unit_sources), fmt::arg("rtl", rtl_dir.string()),
+      fmt::arg("p", parameters));
+  // The same table from flip-flops, synthesised at up to 64 lines.
+  c.table_front = fmt::format(
+      "read_verilog -sv {inc} {rtl}/scanline_table.sv\n"
+      "chparam -set Depth {d} -set WordBits {w} scanline_table\n"
+      "hierarchy -check -top scanline_table\n",
+      fmt::arg("inc", include), fmt::arg("rtl", rtl_dir.string()), fmt::arg("d", c.flop_lines),
+      fmt::arg("w", c.word_bits));
+  if (!fs::exists(c.dir / "cd_widths.svh")) write_file_atomic(c.dir / "cd_widths.svh", c.header);
+  return c;
+}
+
+nlohmann::json block_areas(const std::map<std::string, ModuleStat>& unit, const UnitConfig& config,
+                           const std::string& log_path) {
+  // Blocks: the top's submodules by kind (the table is a black box), each
+  // reciprocal counted apart from the block that holds it, and the top's own
+  // cells as control. They sum to the unit's logic.
+  const std::string top = find_module(unit, "cd_scan_unit");
+  const Subtree recip = subtree_of(unit, "reciprocal");  // one per design: fill or pixels
+  static const std::map<std::string, std::string> block_of = {
+      {"setup_engine", "setup engine"},     {"column_walker", "column walker"},
+      {"correction_adder", "correction adder"}, {"plane_accumulator", "plane accumulators"},
+      {"pixel_divide", "pixel multiply"},   {"affine_setup", "affine setup"},
+      {"shift_round", "output rounding"},   {"affine_sub_datapath", "subdivision datapath"},
+      {"kim_datapath", "Kim datapath"}};
+  std::vector<std::string> order;
+  std::map<std::string, Subtree> totals;
+  const auto add = [&](const std::string& name, double area, int64_t flops) {
+    if (!totals.count(name)) order.push_back(name);
+    totals[name].area += area;
+    totals[name].flops += flops;
+  };
+  for (const auto& [sub, count] : unit.at(top).submodules) {
+    const std::string base = base_name(sub);
+    if (base == "scanline_table") continue;
+    const auto it = block_of.find(base);
+    if (it == block_of.end())
+      throw std::runtime_error(fmt::format("area: no block for module '{}' in {}", base, log_path));
+    Subtree t = subtree(unit, sub);
+    if (base == config.reciprocal_owner) {
+      t.area -= recip.area;
+      t.flops -= recip.flops;
+    }
+    add(it->second, static_cast<double>(count) * t.area, count * t.flops);
+  }
+  if (recip.area > 0) add("reciprocal", recip.area, recip.flops);
+  const auto& control = unit.at(top);
+  add("control", control.own_area, control.own_flops);
+  nlohmann::json blocks = nlohmann::json::array();
+  for (const std::string& name : order)
+    blocks.push_back({{"name", name}, {"area_um2", totals[name].area}, {"flops", totals[name].flops}});
+  return blocks;
+}
+
+double table_area(const std::map<std::string, ModuleStat>& table) {
+  return subtree(table, find_module(table, "scanline_table")).area;
+}
+
+AreaReport area_report(const Design& design, const Widths& widths, const UnitConfig& config,
+                       const nlohmann::json& synthesised, const AreaOptions& options) {
   AreaReport report;
   report.design = design.name;
   report.widths = widths;
-  report.log_path = (dir / "unit.log").string();
-  const int64_t sram_depth = has_table ? int64_t{widths.table_depth} << density_log2 : 0;
-  report.sram_bits = sram_depth * derived.word_bits;
+  report.log_path = (config.dir / "unit.log").string();
+  report.sram_bits = config.sram_depth * config.word_bits;
   report.sram_area_um2 =
       static_cast<double>(report.sram_bits) * options.sram_cell_um2 / options.sram_efficiency;
   const double nand2 = liberty_cell_area(options.liberty, "NAND2X1");
-
-  nlohmann::json synthesised;
-  if (fs::exists(result_path)) {
-    synthesised = nlohmann::json::parse(read_text_file(result_path));
-    report.cached = true;
-  } else {
-    write_file_atomic(dir / "cd_widths.svh", header);
-    std::string unit_sources;
-    for (const fs::path& source : sources)
-      if (source.filename() != "scanline_table.sv") unit_sources += " " + source.string();
-    const std::string L = options.liberty;
-    const std::string include = fmt::format("-I{} -I{}", dir.string(), rtl_dir.string());
-    // The unit, with the scanline table as a black box (it is SRAM).
-    write_file_atomic(dir / "unit.ys", fmt::format(
-        "read_verilog -sv -DSYNTHESIS {inc}{src}\n"
-        "read_verilog -sv -lib {inc} {rtl}/scanline_table.sv\n"
-        "chparam {p} cd_scan_unit\n"
-        "hierarchy -check -top cd_scan_unit\n"
-        "proc\n"
-        "select -assert-none t:$dlatch t:$adlatch t:$dlatchsr t:$sr\n"
-        "opt -fast\n"
-        "select -assert-none t:$div t:$mod t:$divfloor t:$modfloor\n"
-        "wreduce\nalumacc\nopt -fast\nmemory -nomap\ntechmap\n"
-        "dfflibmap -liberty {L}\nabc -fast -liberty {L}\nopt_clean\n"
-        "select -assert-none t:$* t:$paramod* %d\n"
-        "stat -liberty {L}\n",
-        fmt::arg("inc", include), fmt::arg("src", unit_sources), fmt::arg("rtl", rtl_dir.string()),
-        fmt::arg("p", parameters), fmt::arg("L", L)));
-    // The same table from flip-flops, synthesised at up to 64 lines.
-    const int64_t flop_lines = std::min<int64_t>(sram_depth, 64);  // 0: no table
-    write_file_atomic(dir / "table.ys", fmt::format(
-        "read_verilog -sv {inc} {rtl}/scanline_table.sv\n"
-        "chparam -set Depth {d} -set WordBits {w} scanline_table\n"
-        "hierarchy -check -top scanline_table\n"
-        "proc\nopt -fast\nmemory\nopt -fast\ntechmap\n"
-        "dfflibmap -liberty {L}\nabc -fast -liberty {L}\nopt_clean\n"
-        "select -assert-none t:$* t:$paramod* %d\n"
-        "stat -liberty {L}\n",
-        fmt::arg("inc", include), fmt::arg("rtl", rtl_dir.string()), fmt::arg("d", flop_lines),
-        fmt::arg("w", derived.word_bits), fmt::arg("L", L)));
-
-    if (!options.quiet)
-      std::cerr << fmt::format("area: synthesising {} with yosys onto {} (log {})\n", design.name,
-                               fs::path(L).filename().string(), report.log_path);
-    const auto start = std::chrono::steady_clock::now();
-    int unit_status = 0, table_status = 0;
-    std::thread table([&] {
-      if (has_table) table_status = run_yosys(dir / "table.ys", dir / "table.log");
-    });
-    unit_status = run_yosys(dir / "unit.ys", dir / "unit.log");
-    table.join();
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (unit_status != 0)
-      throw std::runtime_error(fmt::format("yosys failed on the unit: {} ({})",
-                                           yosys_error(dir / "unit.log"), report.log_path));
-    if (table_status != 0)
-      throw std::runtime_error(fmt::format("yosys failed on the flip-flop table: {} ({})",
-                                           yosys_error(dir / "table.log"), (dir / "table.log").string()));
-
-    const auto unit = parse_stat(read_text_file(dir / "unit.log"));
-    // Blocks: the top's submodules by kind (the table is a black box), each
-    // reciprocal counted apart from the block that holds it, and the top's
-    // own cells as control. They sum to the unit's logic.
-    const std::string top = find_module(unit, "cd_scan_unit");
-    const Subtree recip = subtree_of(unit, "reciprocal");  // one per design: fill or pixels
-    static const std::map<std::string, std::string> block_of = {
-        {"setup_engine", "setup engine"},     {"column_walker", "column walker"},
-        {"correction_adder", "correction adder"}, {"plane_accumulator", "plane accumulators"},
-        {"pixel_divide", "pixel multiply"},   {"affine_setup", "affine setup"},
-        {"shift_round", "output rounding"},   {"affine_sub_datapath", "subdivision datapath"},
-        {"kim_datapath", "Kim datapath"}};
-    std::vector<std::string> order;
-    std::map<std::string, Subtree> totals;
-    const auto add = [&](const std::string& name, double area, int64_t flops) {
-      if (!totals.count(name)) order.push_back(name);
-      totals[name].area += area;
-      totals[name].flops += flops;
-    };
-    for (const auto& [sub, count] : unit.at(top).submodules) {
-      const std::string base = base_name(sub);
-      if (base == "scanline_table") continue;
-      const auto it = block_of.find(base);
-      if (it == block_of.end())
-        throw std::runtime_error(fmt::format("area: no block for module '{}' in {}", base, report.log_path));
-      Subtree t = subtree(unit, sub);
-      // The reciprocal, reported on its own, is the fill's (in the setup engine)
-      // in the table designs, the pixels' (in pixel_divide) in divide and the
-      // end points' in affine-subN.
-      if ((base == "setup_engine" && has_table) || base == "pixel_divide" ||
-          base == "affine_sub_datapath") {
-        t.area -= recip.area;
-        t.flops -= recip.flops;
-      }
-      add(it->second, static_cast<double>(count) * t.area, count * t.flops);
-    }
-    if (recip.area > 0) add("reciprocal", recip.area, recip.flops);
-    const auto& control = unit.at(top);
-    add("control", control.own_area, control.own_flops);
-    nlohmann::json blocks = nlohmann::json::array();
-    for (const std::string& name : order)
-      blocks.push_back({{"name", name}, {"area_um2", totals[name].area}, {"flops", totals[name].flops}});
-    double table_area = 0;
-    if (has_table) {
-      const auto flop_table = parse_stat(read_text_file(dir / "table.log"));
-      table_area = subtree(flop_table, find_module(flop_table, "scanline_table")).area;
-    }
-    synthesised = {
-        {"seconds", seconds},
-        {"blocks", blocks},
-        {"flop_table_lines", flop_lines},
-        {"flop_table_area_um2", table_area},
-    };
-    write_file_atomic(result_path, synthesised.dump(2) + "\n");
-  }
   report.synthesis_seconds = synthesised.at("seconds").get<double>();
   for (const auto& b : synthesised.at("blocks")) {
     if (b.at("area_um2").get<double>() == 0 && b.at("flops").get<int64_t>() == 0) continue;  // absent
@@ -335,9 +303,71 @@ AreaReport synthesise_area(const Design& design, const Widths& widths, const Are
   report.flop_table_lines_synthesised = synthesised.at("flop_table_lines").get<int64_t>();
   if (report.flop_table_lines_synthesised > 0)
     report.flop_table_area_um2 = synthesised.at("flop_table_area_um2").get<double>() *
-                                 static_cast<double>(sram_depth) /
+                                 static_cast<double>(config.sram_depth) /
                                  static_cast<double>(report.flop_table_lines_synthesised);
   report.total_area_um2 = report.logic_area_um2 + report.sram_area_um2;
+  return report;
+}
+
+}  // namespace area_detail
+
+AreaReport synthesise_area(const Design& design, const Widths& widths, const AreaOptions& options) {
+  if (options.estimate) return estimate_area(design, widths, options);
+  const UnitConfig config = prepare_unit(design, widths, options);
+  const fs::path& dir = config.dir;
+  const fs::path result_path = dir / "result.json";
+  nlohmann::json synthesised;
+  bool cached = false;
+  if (fs::exists(result_path)) {
+    synthesised = nlohmann::json::parse(read_text_file(result_path));
+    cached = true;
+  } else {
+    const std::string& L = options.liberty;
+    write_file_atomic(dir / "unit.ys", config.unit_front + fmt::format(
+        "proc\n"
+        "select -assert-none t:$dlatch t:$adlatch t:$dlatchsr t:$sr\n"
+        "opt -fast\n"
+        "select -assert-none t:$div t:$mod t:$divfloor t:$modfloor\n"
+        "wreduce\nalumacc\nopt -fast\nmemory -nomap\ntechmap\n"
+        "dfflibmap -liberty {L}\nabc -fast -liberty {L}\nopt_clean\n"
+        "select -assert-none t:$* t:$paramod* %d\n"
+        "stat -liberty {L}\n", fmt::arg("L", L)));
+    write_file_atomic(dir / "table.ys", config.table_front + fmt::format(
+        "proc\nopt -fast\nmemory\nopt -fast\ntechmap\n"
+        "dfflibmap -liberty {L}\nabc -fast -liberty {L}\nopt_clean\n"
+        "select -assert-none t:$* t:$paramod* %d\n"
+        "stat -liberty {L}\n", fmt::arg("L", L)));
+
+    if (!options.quiet)
+      std::cerr << fmt::format("area: synthesising {} with yosys onto {} (log {})\n", design.name,
+                               fs::path(L).filename().string(), (dir / "unit.log").string());
+    const auto start = std::chrono::steady_clock::now();
+    int unit_status = 0, table_status = 0;
+    std::thread table([&] {
+      if (config.has_table) table_status = run_yosys(dir / "table.ys", dir / "table.log");
+    });
+    unit_status = run_yosys(dir / "unit.ys", dir / "unit.log");
+    table.join();
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (unit_status != 0)
+      throw std::runtime_error(fmt::format("yosys failed on the unit: {} ({})",
+                                           yosys_error(dir / "unit.log"), (dir / "unit.log").string()));
+    if (table_status != 0)
+      throw std::runtime_error(fmt::format("yosys failed on the flip-flop table: {} ({})",
+                                           yosys_error(dir / "table.log"), (dir / "table.log").string()));
+    const auto unit = parse_stat(read_text_file(dir / "unit.log"));
+    synthesised = {
+        {"seconds", seconds},
+        {"blocks", block_areas(unit, config, (dir / "unit.log").string())},
+        {"flop_table_lines", config.flop_lines},
+        {"flop_table_area_um2",
+         config.has_table ? table_area(parse_stat(read_text_file(dir / "table.log"))) : 0.0},
+    };
+    write_file_atomic(result_path, synthesised.dump(2) + "\n");
+  }
+  AreaReport report = area_report(design, widths, config, synthesised, options);
+  report.cached = cached;
   return report;
 }
 
@@ -359,6 +389,7 @@ nlohmann::json area_json(const AreaReport& r, const AreaOptions& options) {
           {"flop_table_lines_synthesised", r.flop_table_lines_synthesised},
           {"total_area_um2", r.total_area_um2},
           {"synthesis_seconds", r.synthesis_seconds},
+          {"estimated", r.estimated},
           {"liberty", options.liberty},
           {"build", kBuildRevision}};
 }
@@ -377,7 +408,8 @@ nlohmann::json area_summary_json(const AreaReport& r) {
 
 std::string area_table(const std::vector<AreaReport>& reports, const AreaOptions& options) {
   std::string out = fmt::format(
-      "area: Yosys onto {} (NAND2X1 = {} um^2), SRAM at {} um^2 per bit / {} efficiency (docs/area.md)\n",
+      "area: {} onto {} (NAND2X1 = {} um^2), SRAM at {} um^2 per bit / {} efficiency (docs/area.md)\n",
+      options.estimate ? "the component area model, calibrated by Yosys," : "Yosys",
       fs::path(options.liberty).filename().string(), nand2_area_um2(options), options.sram_cell_um2,
       options.sram_efficiency);
   out += fmt::format("{:<17} {:>13} {:>10} {:>10} {:>12} {:>13}\n", "design", "logic um^2", "NAND2-eq",
@@ -405,49 +437,10 @@ std::vector<AreaReport> synthesise_areas(const std::vector<AreaJob>& list, const
   }
   AreaOptions quiet = options;
   quiet.quiet = true;
-  const unsigned workers_wanted =
-      threads > 0 ? threads : std::max(1u, std::thread::hardware_concurrency());
   std::vector<AreaReport> reports(distinct.size());
-  std::atomic<size_t> next{0}, done{0};
-  std::atomic<unsigned> running{0};
-  std::exception_ptr failure;
-  std::mutex failure_mutex;
-  const auto start = std::chrono::steady_clock::now();
-  const auto elapsed = [&] {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  };
-  const unsigned workers_count = std::min<unsigned>(workers_wanted, unsigned(distinct.size()));
-  running = workers_count;
-  std::vector<std::thread> workers;
-  for (unsigned t = 0; t < workers_count; ++t)
-    workers.emplace_back([&] {
-      for (size_t i; (i = next++) < distinct.size();) {
-        try {
-          reports[i] = synthesise_area(distinct[i]->design, distinct[i]->widths, quiet);
-        } catch (...) {
-          std::lock_guard<std::mutex> guard(failure_mutex);
-          if (!failure) failure = std::current_exception();
-          next = distinct.size();
-        }
-        ++done;
-      }
-      --running;
-    });
-  Progress progress(distinct.size(), "area", "syntheses (Yosys, cached)");
-  bool shown = false;
-  for (int tick = 0; running > 0; ++tick) {
-    if (interrupted()) next = distinct.size();
-    // Only a batch that really synthesises shows progress; a cached one is instant.
-    if (tick >= 10 && tick % 10 == 0) {
-      progress.update(done, elapsed());
-      shown = true;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  }
-  for (auto& w : workers) w.join();
-  throw_if_interrupted();
-  if (failure) std::rethrow_exception(failure);
-  if (shown) progress.update(done, elapsed(), true);
+  run_parallel(distinct.size(), threads, "area",
+               options.estimate ? "estimates (component model, cached)" : "syntheses (Yosys, cached)",
+               [&](size_t i) { reports[i] = synthesise_area(distinct[i]->design, distinct[i]->widths, quiet); });
   std::vector<AreaReport> out;
   out.reserve(list.size());
   for (size_t i = 0; i < list.size(); ++i) out.push_back(reports[slot[i]]);
@@ -464,6 +457,10 @@ CLI::App* add_area_command(CLI::App& app, AreaOptions& options) {
   cmd->add_option("--cache", options.cache_dir,
                   "cache folder (default $XDG_CACHE_HOME/cdsim/area or ~/.cache/cdsim/area)");
   cmd->add_option("--liberty", options.liberty, "standard-cell liberty file")->capture_default_str();
+  cmd->add_flag("--model", options.estimate,
+                "estimate by the component area model (an elaboration of about 5 s, no mapping) "
+                "instead of synthesising; cdsim area-model calibrates it");
+  cmd->add_option("--model-file", options.model_path, "the model's calibration (default: rtl/area_model.json)");
   cmd->add_option("--sram-cell-um2", options.sram_cell_um2, "SRAM bit-cell area (docs/area.md)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
@@ -481,8 +478,10 @@ int run_area_command(const AreaOptions& options) {
   const AreaReport r = synthesise_area(design, widths, options);
   fmt::print("area of {} at {}\n", r.design, describe(r.widths));
   fmt::print("build {}, liberty {}, {}\n", kBuildRevision, options.liberty,
-             r.cached ? fmt::format("cached (synthesised in {:.0f} s)", r.synthesis_seconds)
-                      : fmt::format("synthesised in {:.0f} s", r.synthesis_seconds));
+             r.estimated ? fmt::format("estimated by the component area model {} (docs/area.md; "
+                                       "elaborated in {:.0f} s)", r.log_path, r.synthesis_seconds)
+             : r.cached  ? fmt::format("cached (synthesised in {:.0f} s)", r.synthesis_seconds)
+                         : fmt::format("synthesised in {:.0f} s", r.synthesis_seconds));
   fmt::print("\n{:<18} {:>14} {:>11} {:>8}\n", "block", "area um^2", "NAND2-eq", "flops");
   for (const BlockArea& b : r.blocks)
     fmt::print("{:<18} {:>14.0f} {:>11.0f} {:>8}\n", b.name, b.area_um2, b.nand2_eq, b.flops);

@@ -34,6 +34,7 @@ struct AreaReport {
   double total_area_um2 = 0;       // logic + SRAM
   double synthesis_seconds = 0;
   bool cached = false;
+  bool estimated = false;          // by the component area model (area_model.hpp), not synthesis
   std::string log_path;
 };
 
@@ -46,6 +47,8 @@ struct AreaOptions {
   double sram_cell_um2 = 6.0;    // docs/area.md: 600 lambda^2, lambda = 0.10 um (osu018's SCMOS rules)
   double sram_efficiency = 0.65; // cell array / macro area
   bool quiet = false;            // no "synthesising" line (batches show a progress bar instead)
+  bool estimate = false;         // the component area model instead of synthesis (area_model.hpp)
+  std::string model_path;        // its calibration (default: rtl/area_model.json)
 };
 
 // One configuration to synthesise.
@@ -56,6 +59,7 @@ struct AreaJob {
 
 // Synthesises (or reads from the cache). Throws std::runtime_error with Yosys's
 // own message and the log's path when synthesis fails or a check fails.
+// With options.estimate, estimate_area (area_model.hpp) instead.
 AreaReport synthesise_area(const Design& design, const Widths& widths, const AreaOptions& options);
 nlohmann::json area_json(const AreaReport& report, const AreaOptions& options);
 

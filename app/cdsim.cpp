@@ -121,10 +121,12 @@ int dispatch(Cli& cli) {
   if (*cli.widths_command) return widths_command(cli.widths, cli.sv_path);
   if (*cli.regress_command) return cdsim::rtl::run_regress_command(cli.regress);
   if (*cli.sweep_command) return run_sweep_command(cli.sweep);
+  if (*cli.merge_command) return run_merge_command(cli.merge);
   if (*cli.render_command) return run_render_command(cli.render);
   if (*cli.size_command) return run_size_command(cli.size);
   if (*cli.area_command) return run_area_command(cli.area);
   if (*cli.choose_command) return run_choose_command(cli.choose);
+  if (*cli.area_model_command) return run_area_model_command(cli.area_model);
   if (*cli.hard_cases_command) {
     for (const HardCase& c : hard_cases()) fmt::print("hard:{:<15} {}\n", c.name, c.expected);
     return 0;

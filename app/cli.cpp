@@ -33,6 +33,7 @@ std::unique_ptr<Cli> make_cli() {
 
   cli->regress_command = rtl::add_regress_command(app, cli->regress);
   cli->sweep_command = add_sweep_command(app, cli->sweep);
+  cli->merge_command = add_merge_command(app, cli->merge);
   cli->designs_command = app.add_subcommand("designs", "list the designs");
   cli->hard_cases_command =
       app.add_subcommand("hard-cases", "list the named hard cases (--scene hard:NAME, hard:all)");
@@ -40,6 +41,7 @@ std::unique_ptr<Cli> make_cli() {
   cli->size_command = add_size_command(app, cli->size);
   cli->area_command = add_area_command(app, cli->area);
   cli->choose_command = add_choose_command(app, cli->choose);
+  cli->area_model_command = add_area_model_command(app, cli->area_model);
 
   cli::make_strict(app);
   return cli;

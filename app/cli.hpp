@@ -9,6 +9,7 @@
 #include <string>
 
 #include "area.hpp"
+#include "area_model.hpp"
 #include "choose.hpp"
 #include "common.hpp"
 #include "regress.hpp"
@@ -29,15 +30,18 @@ struct Cli {
   std::string sv_path;         // widths --sv
   rtl::RegressOptions regress;
   SweepOptions sweep;
+  MergeOptions merge;
   RenderOptions render;
   SizeOptions size;
   AreaOptions area;
+  AreaModelOptions area_model;
   ChooseOptions choose;
   // The subcommands; none given means run.
   CLI::App *run_command = nullptr, *bench_command = nullptr, *widths_command = nullptr,
            *regress_command = nullptr, *sweep_command = nullptr, *designs_command = nullptr,
            *hard_cases_command = nullptr, *render_command = nullptr, *size_command = nullptr,
-           *area_command = nullptr, *choose_command = nullptr;
+           *area_command = nullptr, *choose_command = nullptr, *area_model_command = nullptr,
+           *merge_command = nullptr;
 };
 
 // Builds the whole command line. The options refer into the Cli, which

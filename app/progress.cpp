@@ -3,7 +3,16 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cstdio>
+#include <exception>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include "interrupt.hpp"
 
 namespace cdsim {
 
@@ -34,6 +43,51 @@ void Progress::update(size_t done, double seconds, bool final) {
                total_ ? 100.0 * double(done) / double(total_) : 100.0, seconds, left);
     next_line_ = seconds + kPlainProgressSeconds;
   }
+}
+
+void run_parallel(size_t count, unsigned threads, const std::string& prefix, const std::string& noun,
+                  const std::function<void(size_t)>& job, ProgressShown when) {
+  if (count == 0) return;
+  const unsigned wanted = threads > 0 ? threads : std::max(1u, std::thread::hardware_concurrency());
+  const unsigned workers_count = std::min<unsigned>(wanted, static_cast<unsigned>(std::min<size_t>(count, 1024)));
+  std::atomic<size_t> next{0}, done{0};
+  std::atomic<unsigned> running{workers_count};
+  std::exception_ptr failure;
+  std::mutex failure_mutex;
+  const auto start = std::chrono::steady_clock::now();
+  const auto elapsed = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  std::vector<std::thread> workers;
+  for (unsigned t = 0; t < workers_count; ++t)
+    workers.emplace_back([&] {
+      for (size_t i; (i = next++) < count;) {
+        try {
+          job(i);
+        } catch (...) {
+          std::lock_guard<std::mutex> guard(failure_mutex);
+          if (!failure) failure = std::current_exception();
+          next = count;
+        }
+        ++done;
+      }
+      --running;
+    });
+  Progress progress(count, prefix, noun);
+  bool shown = false;
+  for (int tick = 0; running > 0; ++tick) {
+    if (interrupted()) next = count;
+    // Only a batch that really works shows progress; a cached one is instant.
+    if (when == ProgressShown::Always ? tick % 2 == 0 : tick >= 10 && tick % 10 == 0) {
+      progress.update(done, elapsed());
+      shown = true;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  for (auto& w : workers) w.join();
+  throw_if_interrupted();
+  if (failure) std::rethrow_exception(failure);
+  if (shown || when == ProgressShown::Always) progress.update(done, elapsed(), true);
 }
 
 }  // namespace cdsim

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <string>
 
 namespace cdsim {
@@ -19,5 +20,15 @@ class Progress {
   bool tty_;
   double next_line_;
 };
+
+enum class ProgressShown { Always, AfterASecond };
+
+// Runs job(0) .. job(count - 1), `threads` at a time (0: all cores), with a
+// Progress bar: always, or once the batch has run for a second (so that a
+// batch of cached results stays quiet). Stops taking jobs at the first
+// exception or on SIGINT/SIGTERM, then rethrows it (or throws Interrupted).
+void run_parallel(size_t count, unsigned threads, const std::string& prefix, const std::string& noun,
+                  const std::function<void(size_t)>& job,
+                  ProgressShown shown = ProgressShown::AfterASecond);
 
 }  // namespace cdsim

@@ -13,6 +13,7 @@
 #include <map>
 #include <mutex>
 #include <optional>
+#include <sstream>
 #include <stdexcept>
 #include <thread>
 
@@ -212,9 +213,16 @@ CLI::App* add_sweep_command(CLI::App& app, SweepOptions& options) {
       ->capture_default_str();
   sweep->add_option("--jobs", options.jobs, "worker threads (default: all cores)")
       ->check(cli::integer_in(1, 1024));
-  sweep->add_flag("--area", options.area,
+  CLI::Option* area_flag = sweep->add_flag("--area", options.area,
                   "also synthesise each distinct configuration of a design with RTL (cdsim area: "
                   "Yosys, cached, all cores) and add its area to the rows");
+  sweep->add_flag("--area-model", options.area_model,
+                  "as --area, but by the component area model (cdsim area --model: an elaboration "
+                  "of about 5 s, calibrated by cdsim area-model) instead of full synthesis")
+      ->excludes(area_flag);
+  sweep->add_option("--shard", options.shard,
+                    "I/N: run only the I-th of N shards (every N-th configuration from the I-th); "
+                    "cdsim merge joins the shards' folders into the whole sweep's files");
   sweep->add_flag("--yes", options.yes,
                   fmt::format("run a sweep of more than {} configurations", kSweepConfirmLimit));
   return sweep;
@@ -238,6 +246,22 @@ int run_sweep_command(const SweepOptions& options) {
 
   std::vector<Config> configs = plan.default_sweep ? default_configs() : product_configs(plan.designs, plan.axes);
   for (const Config& c : configs) validate(c.widths);
+  const Shard shard = options.shard.empty() ? Shard{} : parse_shard("--shard", options.shard);
+  const size_t total = configs.size();
+  std::vector<size_t> global_index;  // of each configuration this run holds
+  {
+    std::vector<Config> held;
+    for (size_t i = 0; i < configs.size(); ++i)
+      if (shard.holds(i)) {
+        held.push_back(std::move(configs[i]));
+        global_index.push_back(i);
+      }
+    configs = std::move(held);
+  }
+  if (!shard.whole()) {
+    fmt::print("shard {}/{}: {} of the {} configurations\n", shard.index, shard.count, configs.size(), total);
+    std::fflush(stdout);
+  }
 
   // The folder is locked before the long part, so that a second sweep into it stops at once.
   std::error_code error;
@@ -262,46 +286,20 @@ int run_sweep_command(const SweepOptions& options) {
     if (!slot) slot = std::make_shared<const PreparedScene>(prepare(scene, w));
     return slot;
   };
-  prepared_for(configs.front().widths);  // refuse bad input before starting the workers
+  if (!configs.empty()) prepared_for(configs.front().widths);  // refuse bad input before the workers start
 
   std::vector<DesignResult> results(configs.size());
-  std::atomic<size_t> next{0}, done{0};
-  std::atomic<unsigned> running{jobs};
-  std::exception_ptr failure;
-  std::mutex failure_mutex;
   const auto start = std::chrono::steady_clock::now();
   const auto elapsed = [&] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   };
-  std::vector<std::thread> workers;
-  for (unsigned t = 0; t < jobs; ++t)
-    workers.emplace_back([&] {
-      for (size_t i; (i = next++) < configs.size();) {
-        try {
-          results[i] = evaluate(*prepared_for(configs[i].widths), configs[i].design, configs[i].widths);
-        } catch (...) {
-          std::lock_guard<std::mutex> guard(failure_mutex);
-          if (!failure) failure = std::current_exception();
-          next = configs.size();  // the others stop after their current configuration
-        }
-        ++done;
-      }
-      --running;
-    });
-  Progress progress(configs.size(), "sweep", "configurations");
-  for (int tick = 0; running > 0; ++tick) {
-    if (interrupted()) next = configs.size();
-    if (tick % 2 == 0) progress.update(done, elapsed());
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  }
-  for (auto& w : workers) w.join();
-  throw_if_interrupted();
-  if (failure) std::rethrow_exception(failure);
-  progress.update(done, elapsed(), true);
+  run_parallel(configs.size(), jobs, "sweep", "configurations", [&](size_t i) {
+    results[i] = evaluate(*prepared_for(configs[i].widths), configs[i].design, configs[i].widths);
+  }, ProgressShown::Always);
 
   // Area: each distinct configuration synthesised once, after the model runs.
   std::vector<std::optional<AreaReport>> areas(configs.size());
-  if (options.area) {
+  if (options.area || options.area_model) {
     std::vector<AreaJob> jobs_list;
     std::vector<size_t> rows;
     for (size_t i = 0; i < configs.size(); ++i)
@@ -309,9 +307,11 @@ int run_sweep_command(const SweepOptions& options) {
         jobs_list.push_back({configs[i].design, configs[i].widths});
         rows.push_back(i);
       }
-    fmt::print("area: {} configurations with RTL to synthesise (cached ones are free)\n", jobs_list.size());
+    fmt::print("area: {} configurations with RTL to {} (cached ones are free)\n", jobs_list.size(),
+               options.area_model ? "estimate with the component area model" : "synthesise");
     std::fflush(stdout);
-    const AreaOptions area_options;
+    AreaOptions area_options;
+    area_options.estimate = options.area_model;
     const std::vector<AreaReport> reports = synthesise_areas(jobs_list, area_options, jobs);
     for (size_t k = 0; k < rows.size(); ++k) areas[rows[k]] = reports[k];
   }
@@ -335,6 +335,9 @@ int run_sweep_command(const SweepOptions& options) {
     if (areas[i]) row["area"] = area_summary_json(*areas[i]);
     json["rows"].push_back(row);
   }
+  if (!shard.whole())
+    json["shard"] = {{"index", shard.index}, {"count", shard.count}, {"configurations", total},
+                     {"rows", global_index}};
   // Both files complete before either replaces the previous run's.
   write_files_atomic({{json_path, json.dump(1) + '\n'}, {csv_path, csv}});
 
@@ -359,6 +362,110 @@ int run_sweep_command(const SweepOptions& options) {
   }
   fmt::print("\n{} configurations in {:.1f} s; wrote {} and {}\n", configs.size(), elapsed(),
              csv_path, json_path);
+  return 0;
+}
+
+}  // namespace cdsim
+
+namespace cdsim {
+
+CLI::App* add_merge_command(CLI::App& app, MergeOptions& options) {
+  CLI::App* cmd = app.add_subcommand(
+      "merge", "join the output folders of a sharded sweep (sweep --shard I/N) into the files the "
+               "whole sweep writes, byte for byte");
+  cmd->add_option("shards", options.shards, "the shards' output folders, every shard once")->required();
+  cmd->add_option("--out", options.out, "output folder (created; locked while merging)")->required();
+  return cmd;
+}
+
+int run_merge_command(const MergeOptions& options) {
+  namespace fs = std::filesystem;
+  struct Part {
+    std::string folder;
+    nlohmann::json json;
+    std::vector<std::string> rows;  // CSV lines after the header
+    std::string header;
+  };
+  std::vector<Part> parts;
+  for (const std::string& folder : options.shards) {
+    Part p;
+    p.folder = folder;
+    const fs::path json_path = fs::path(folder) / "sweep.json", csv_path = fs::path(folder) / "sweep.csv";
+    try {
+      p.json = nlohmann::json::parse(read_text_file(json_path));
+    } catch (const nlohmann::json::exception& e) {
+      throw std::runtime_error(fmt::format("{}: not JSON: {}", json_path.string(), e.what()));
+    }
+    if (!p.json.is_object() || !p.json.contains("shard") || !p.json.contains("rows"))
+      throw std::runtime_error(fmt::format("{}: not a shard of a sweep (no 'shard'): was it run with --shard I/N?",
+                                           json_path.string()));
+    std::istringstream csv(read_text_file(csv_path));
+    std::getline(csv, p.header);
+    for (std::string line; std::getline(csv, line);) p.rows.push_back(line);
+    const auto& shard = p.json.at("shard");
+    if (p.rows.size() != p.json.at("rows").size() || p.rows.size() != shard.at("rows").size())
+      throw std::runtime_error(fmt::format("{}: sweep.csv has {} rows but sweep.json {}", folder, p.rows.size(),
+                                           p.json.at("rows").size()));
+    parts.push_back(std::move(p));
+  }
+  const auto whole_header = [](nlohmann::json j) {
+    j.erase("shard");
+    j.erase("rows");
+    return j;
+  };
+  const Part& first = parts.front();
+  const uint64_t count = first.json.at("shard").at("count").get<uint64_t>();
+  const uint64_t total = first.json.at("shard").at("configurations").get<uint64_t>();
+  std::map<uint64_t, std::string> folder_of;
+  for (const Part& p : parts) {
+    const auto& s = p.json.at("shard");
+    if (s.at("count").get<uint64_t>() != count || s.at("configurations").get<uint64_t>() != total ||
+        whole_header(p.json) != whole_header(first.json) || p.header != first.header)
+      throw std::runtime_error(fmt::format(
+          "{} and {} are shards of different sweeps (shard count, configurations, scene, build or columns "
+          "differ)", first.folder, p.folder));
+    const uint64_t index = s.at("index").get<uint64_t>();
+    const auto [it, added] = folder_of.emplace(index, p.folder);
+    if (!added)
+      throw std::runtime_error(fmt::format("{} and {} are both shard {}/{}", it->second, p.folder, index, count));
+  }
+  std::string missing;
+  for (uint64_t i = 1; i <= count; ++i)
+    if (!folder_of.count(i)) missing += fmt::format("{}{}/{}", missing.empty() ? "" : ", ", i, count);
+  if (!missing.empty()) throw std::runtime_error(fmt::format("shard {} missing: give every shard once", missing));
+
+  std::vector<const nlohmann::json*> json_rows(total, nullptr);
+  std::vector<const std::string*> csv_rows(total, nullptr);
+  for (const Part& p : parts) {
+    const auto& s = p.json.at("shard");
+    const uint64_t index = s.at("index").get<uint64_t>();
+    for (size_t k = 0; k < p.rows.size(); ++k) {
+      const uint64_t g = s.at("rows").at(k).get<uint64_t>();
+      if (g >= total || g % count != index - 1 || json_rows[g])
+        throw std::runtime_error(fmt::format("{}/sweep.json: row {} names configuration {}, which is not shard "
+                                             "{}/{}'s or is given twice", p.folder, k, g, index, count));
+      json_rows[g] = &p.json.at("rows").at(k);
+      csv_rows[g] = &p.rows[k];
+    }
+  }
+  nlohmann::json merged = whole_header(first.json);
+  merged["rows"] = nlohmann::json::array();
+  std::string csv = first.header + '\n';
+  for (uint64_t g = 0; g < total; ++g) {
+    if (!json_rows[g])
+      throw std::runtime_error(fmt::format("configuration {} of {} is in no shard", g, total));
+    merged["rows"].push_back(*json_rows[g]);
+    csv += *csv_rows[g] + '\n';
+  }
+  std::error_code error;
+  fs::create_directories(options.out, error);
+  if (error)
+    throw std::runtime_error(fmt::format("--out {}: cannot create the folder: {}", options.out, error.message()));
+  const OutputFolderLock lock(options.out);
+  const std::string csv_path = (fs::path(options.out) / "sweep.csv").string();
+  const std::string json_path = (fs::path(options.out) / "sweep.json").string();
+  write_files_atomic({{json_path, merged.dump(1) + '\n'}, {csv_path, csv}});
+  fmt::print("merged {} shards: {} configurations; wrote {} and {}\n", count, total, csv_path, json_path);
   return 0;
 }
 

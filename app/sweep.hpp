@@ -24,9 +24,19 @@ struct SweepOptions {
   int jobs = 0;          // worker threads; 0 (not given): all cores
   bool yes = false;      // run more than kSweepConfirmLimit configurations
   bool area = false;     // also synthesise each distinct configuration (cdsim area, cached)
+  bool area_model = false;  // area by the component area model instead (area_model.hpp)
+  std::string shard;     // "I/N": only the configurations of that shard (cdsim merge joins them)
 };
 
 CLI::App* add_sweep_command(CLI::App& app, SweepOptions& options);
 int run_sweep_command(const SweepOptions& options);
+
+// cdsim merge: the shards of one sweep joined into the files the whole sweep writes.
+struct MergeOptions {
+  std::string out;
+  std::vector<std::string> shards;
+};
+CLI::App* add_merge_command(CLI::App& app, MergeOptions& options);
+int run_merge_command(const MergeOptions& options);
 
 }  // namespace cdsim

@@ -1,0 +1,539 @@
+#include "area_model.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <limits>
+#include <mutex>
+#include <random>
+#include <set>
+
+#include "area_detail.hpp"
+#include "build_info.hpp"
+#include "cache_files.hpp"
+#include "cli_checks.hpp"
+#include "common.hpp"
+#include "progress.hpp"
+
+namespace cdsim {
+
+namespace fs = std::filesystem;
+using namespace area_detail;
+
+namespace {
+
+// Bumped whenever the elaboration below or the features change.
+constexpr const char* kCoarseFlow = "coarse-flow-1";
+constexpr size_t kFeatureCount = kAreaFeatures.size();
+
+enum Feature : size_t {
+  kMul, kAdd, kCompare, kEqual, kMux, kPmux, kFlop, kAsyncFlop, kShift, kLogic, kReduce, kOther
+};
+
+// Bits of a connection that are not constants (Yosys JSON: net numbers, or
+// "0" / "1" / "x" / "z" for constant bits).
+double live_bits(const nlohmann::json& cell, const char* port) {
+  const auto& connections = cell.at("connections");
+  if (!connections.contains(port)) return 0;
+  double bits = 0;
+  for (const auto& bit : connections.at(port))
+    if (bit.is_number()) ++bits;
+  return bits;
+}
+
+double port_width(const nlohmann::json& cell, const char* port) {
+  const auto& connections = cell.at("connections");
+  return connections.contains(port) ? static_cast<double>(connections.at(port).size()) : 0;
+}
+
+}  // namespace
+
+void add_cell_features(const std::string& type, const nlohmann::json& cell, AreaFeatures& f) {
+  const auto is = [&](std::initializer_list<const char*> types) {
+    return std::any_of(types.begin(), types.end(), [&](const char* t) { return type == t; });
+  };
+  if (type == "$mul") {
+    // Partial-product bits that reach the kept part of the product.
+    const int a = static_cast<int>(live_bits(cell, "A")), b = static_cast<int>(live_bits(cell, "B"));
+    const int y = static_cast<int>(port_width(cell, "Y"));
+    double bits = 0;
+    for (int i = 0; i < a; ++i) bits += std::max(0, std::min(b, y - i));
+    f[kMul] += bits;
+  } else if (is({"$add", "$sub", "$neg", "$alu"})) {
+    f[kAdd] += port_width(cell, "Y");
+  } else if (is({"$lt", "$le", "$gt", "$ge"})) {
+    f[kCompare] += std::max(live_bits(cell, "A"), live_bits(cell, "B"));
+  } else if (is({"$eq", "$ne", "$eqx", "$nex"})) {
+    f[kEqual] += std::max(live_bits(cell, "A"), live_bits(cell, "B"));
+  } else if (type == "$mux") {
+    f[kMux] += port_width(cell, "Y");
+  } else if (type == "$pmux") {
+    f[kPmux] += port_width(cell, "Y") * port_width(cell, "S");
+  } else if (is({"$adff", "$adffe", "$dffsr", "$dffsre", "$aldff", "$aldffe"})) {
+    f[kAsyncFlop] += port_width(cell, "Q");
+  } else if (type.find("dff") != std::string::npos) {
+    f[kFlop] += port_width(cell, "Q");
+  } else if (is({"$shl", "$shr", "$sshl", "$sshr", "$shift", "$shiftx"})) {
+    f[kShift] += port_width(cell, "Y") * std::max(1.0, live_bits(cell, "B"));
+  } else if (is({"$and", "$or", "$xor", "$xnor", "$not"})) {
+    f[kLogic] += port_width(cell, "Y");
+  } else if (type.rfind("$reduce_", 0) == 0 || type.rfind("$logic_", 0) == 0) {
+    f[kReduce] += std::max(live_bits(cell, "A"), live_bits(cell, "B"));
+  } else {
+    f[kOther] += port_width(cell, "Y");
+  }
+}
+
+namespace {
+
+// A module of the elaborated (unmapped) netlist.
+struct CoarseModule {
+  std::string kind;  // base name: setup_engine, shift_round, cd_scan_unit, ...
+  AreaFeatures features{};
+  int64_t flops = 0;
+  std::map<std::string, int64_t> submodules;
+};
+using Inventory = std::map<std::string, CoarseModule>;
+
+Inventory inventory_from_yosys_json(const nlohmann::json& netlist) {
+  Inventory out;
+  const auto& modules = netlist.at("modules");
+  const auto black_box = [&](const std::string& name) {
+    const auto& m = modules.at(name);
+    return m.contains("attributes") && m.at("attributes").contains("blackbox");
+  };
+  for (const auto& [name, module] : modules.items()) {
+    if (black_box(name)) continue;
+    CoarseModule m;
+    m.kind = base_name(name);
+    for (const auto& [cell_name, cell] : module.at("cells").items()) {
+      const std::string type = cell.at("type").get<std::string>();
+      if (modules.contains(type)) {
+        if (!black_box(type)) ++m.submodules[type];  // the SRAM table is not logic
+      } else if (type.rfind("$paramod", 0) == 0 || type[0] != '$') {
+        continue;  // a black box (the SRAM table)
+      } else {
+        add_cell_features(type, cell, m.features);
+        if (type.find("dff") != std::string::npos)
+          m.flops += static_cast<int64_t>(port_width(cell, "Q"));
+      }
+    }
+    out[name] = m;
+  }
+  return out;
+}
+
+nlohmann::json inventory_json(const Inventory& inv) {
+  nlohmann::json out = nlohmann::json::object();
+  for (const auto& [name, m] : inv)
+    out[name] = {{"kind", m.kind}, {"features", m.features}, {"flops", m.flops}, {"submodules", m.submodules}};
+  return out;
+}
+
+Inventory inventory_of(const nlohmann::json& j) {
+  Inventory out;
+  for (const auto& [name, m] : j.items()) {
+    CoarseModule c;
+    c.kind = m.at("kind").get<std::string>();
+    c.features = m.at("features").get<AreaFeatures>();
+    c.flops = m.at("flops").get<int64_t>();
+    c.submodules = m.at("submodules").get<std::map<std::string, int64_t>>();
+    out[name] = c;
+  }
+  return out;
+}
+
+struct CoarseResult {
+  Inventory unit, table;  // table empty without one
+  double seconds = 0;
+};
+
+// The elaborated netlist of the unit (and flip-flop table), cached in the
+// configuration's folder beside the full synthesis.
+CoarseResult coarse_pass(const UnitConfig& config) {
+  const fs::path path = config.dir / "inventory.json";
+  if (fs::exists(path)) {
+    const nlohmann::json j = nlohmann::json::parse(read_text_file(path));
+    if (j.value("flow", "") == kCoarseFlow)
+      return {inventory_of(j.at("unit")), inventory_of(j.at("table")), j.at("seconds").get<double>()};
+  }
+  static const char* kElaborate = "proc\nopt -fast\nwreduce\nopt -fast\n";
+  const auto start = std::chrono::steady_clock::now();
+  write_file_atomic(config.dir / "coarse_unit.ys",
+                    config.unit_front + kElaborate + "memory -nomap\nopt_clean\n" +
+                        fmt::format("write_json {}\n", (config.dir / "coarse_unit.json").string()));
+  const auto run = [&](const std::string& what) {
+    const fs::path log = config.dir / ("coarse_" + what + ".log");
+    if (run_yosys(config.dir / ("coarse_" + what + ".ys"), log) != 0)
+      throw std::runtime_error(fmt::format("yosys failed elaborating the {}: {} ({})", what,
+                                           yosys_error(log), log.string()));
+    const fs::path json = config.dir / ("coarse_" + what + ".json");
+    Inventory inv = inventory_from_yosys_json(nlohmann::json::parse(read_text_file(json)));
+    fs::remove(json);  // megabytes; the inventory keeps what the model needs
+    return inv;
+  };
+  CoarseResult r;
+  r.unit = run("unit");
+  if (config.has_table) {
+    write_file_atomic(config.dir / "coarse_table.ys",
+                      config.table_front + kElaborate + "memory\nopt -fast\nopt_clean\n" +
+                          fmt::format("write_json {}\n", (config.dir / "coarse_table.json").string()));
+    r.table = run("table");
+  }
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  write_file_atomic(path, nlohmann::json{{"flow", kCoarseFlow},
+                                         {"seconds", r.seconds},
+                                         {"unit", inventory_json(r.unit)},
+                                         {"table", inventory_json(r.table)}}
+                              .dump() + "\n");
+  return r;
+}
+
+double dot(const AreaFeatures& a, const AreaFeatures& b) {
+  double s = 0;
+  for (size_t i = 0; i < kFeatureCount; ++i) s += a[i] * b[i];
+  return s;
+}
+
+// The predicted statistics of an inventory, as parse_stat gives a synthesis's.
+std::map<std::string, ModuleStat> predicted_stat(const Inventory& inv, const AreaModel& model,
+                                                 const std::string& what) {
+  std::map<std::string, ModuleStat> out;
+  for (const auto& [name, m] : inv) {
+    const auto it = model.coefficients.find(m.kind);
+    if (it == model.coefficients.end())
+      throw std::runtime_error(fmt::format(
+          "the area model has no coefficients for module '{}' of the {}: calibrate it with "
+          "cdsim area-model",
+          m.kind, what));
+    ModuleStat s;
+    s.own_area = dot(m.features, it->second);
+    s.own_flops = m.flops;
+    s.submodules = m.submodules;
+    out[name] = s;
+  }
+  return out;
+}
+
+std::string liberty_name(const std::string& liberty) { return fs::path(liberty).filename().string(); }
+
+}  // namespace
+
+std::string default_area_model_path() { return (fs::path(kRtlDir) / "area_model.json").string(); }
+
+std::string rtl_sources_hash() {
+  std::vector<fs::path> sources;
+  for (const auto& entry : fs::directory_iterator(kRtlDir))
+    if (entry.path().extension() == ".sv") sources.push_back(entry.path());
+  std::sort(sources.begin(), sources.end());
+  uint64_t hash = fnv1a(kCoarseFlow);
+  for (const fs::path& source : sources) hash = fnv1a(read_text_file(source), hash);
+  return fmt::format("{:016x}", hash);
+}
+
+AreaModel load_area_model(const std::string& path) {
+  if (!fs::exists(path))
+    throw std::runtime_error(fmt::format("{}: no area model; make one with cdsim area-model", path));
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(read_text_file(path));
+    AreaModel m;
+    if (j.at("flow").get<std::string>() != kCoarseFlow)
+      throw std::runtime_error(fmt::format("it is for flow {}, this build uses {}",
+                                           j.at("flow").get<std::string>(), kCoarseFlow));
+    for (const auto& [kind, c] : j.at("coefficients").items()) m.coefficients[kind] = c.get<AreaFeatures>();
+    m.liberty = j.at("liberty").get<std::string>();
+    m.rtl_hash = j.at("rtl_hash").get<std::string>();
+    m.calibration = j.value("calibration", nlohmann::json::object());
+    return m;
+  } catch (const std::exception& e) {
+    throw std::runtime_error(fmt::format("{}: not a usable area model: {}", path, e.what()));
+  }
+}
+
+AreaReport estimate_area(const Design& design, const Widths& widths, const AreaOptions& options) {
+  static std::mutex mutex;
+  static std::map<std::string, AreaModel> models;
+  const std::string path = options.model_path.empty() ? default_area_model_path() : options.model_path;
+  AreaModel model;
+  {
+    std::lock_guard<std::mutex> guard(mutex);
+    if (!models.count(path)) {
+      models[path] = load_area_model(path);
+      if (models[path].liberty != liberty_name(options.liberty))
+        throw std::runtime_error(fmt::format("{}: calibrated on {}, not {}", path, models[path].liberty,
+                                             liberty_name(options.liberty)));
+      if (models[path].rtl_hash != rtl_sources_hash())
+        std::cerr << fmt::format(
+            "area: warning: {} was calibrated on other RTL sources; re-run cdsim area-model\n", path);
+    }
+    model = models.at(path);
+  }
+  const UnitConfig config = prepare_unit(design, widths, options);
+  const CoarseResult coarse = coarse_pass(config);
+  const auto unit = predicted_stat(coarse.unit, model, "unit");
+  const nlohmann::json estimated = {
+      {"seconds", coarse.seconds},
+      {"blocks", block_areas(unit, config, path)},
+      {"flop_table_lines", config.flop_lines},
+      {"flop_table_area_um2",
+       config.has_table ? table_area(predicted_stat(coarse.table, model, "flip-flop table")) : 0.0}};
+  AreaReport report = area_report(design, widths, config, estimated, options);
+  report.estimated = true;
+  report.log_path = path;
+  return report;
+}
+
+Widths random_widths(uint64_t seed, const std::string& tag, int index) {
+  std::mt19937_64 rng(fnv1a(fmt::format("{} {} {}", seed, tag, index)));
+  // Plain modulo rather than std::uniform_int_distribution, whose output the
+  // standard leaves to the library: the same seed gives the same widths anywhere.
+  const auto draw = [&](int lo, int hi) {
+    return lo + static_cast<int>(rng() % static_cast<uint64_t>(hi - lo + 1));
+  };
+  for (int attempt = 0; attempt < 10000; ++attempt) {
+    Widths w;
+    for (const ParamInfo& p : param_table())
+      w.*(p.field) = p.field == &Widths::table_depth ? 4 << draw(0, 10) : draw(p.min_value, p.max_value);
+    try {
+      validate(w);
+      return w;
+    } catch (const std::invalid_argument&) {
+    }
+  }
+  throw std::logic_error("random_widths: no valid widths in 10000 draws");
+}
+
+std::map<std::string, AreaFeatures> fit_area_coefficients(const std::vector<AreaSample>& samples,
+                                                          size_t leave_out) {
+  std::map<std::string, std::vector<const AreaSample*>> by_kind;
+  for (const AreaSample& s : samples)
+    if (s.config != leave_out) by_kind[s.kind].push_back(&s);
+  std::map<std::string, AreaFeatures> out;
+  for (const auto& [kind, list] : by_kind) {
+    Eigen::MatrixXd x(static_cast<Eigen::Index>(list.size()), static_cast<Eigen::Index>(kFeatureCount));
+    Eigen::VectorXd y(static_cast<Eigen::Index>(list.size()));
+    for (size_t r = 0; r < list.size(); ++r) {
+      for (size_t c = 0; c < kFeatureCount; ++c)
+        x(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = list[r]->features[c];
+      y(static_cast<Eigen::Index>(r)) = list[r]->area;
+    }
+    // Least squares, the smallest coefficients among equal fits (features a
+    // kind never has get 0).
+    const Eigen::VectorXd beta = x.completeOrthogonalDecomposition().solve(y);
+    AreaFeatures c{};
+    for (size_t i = 0; i < kFeatureCount; ++i) c[i] = beta(static_cast<Eigen::Index>(i));
+    out[kind] = c;
+  }
+  return out;
+}
+
+namespace {
+
+// Sum of own areas over the hierarchy below `name`.
+double predicted_total(const Inventory& inv, const std::string& name,
+                       const std::map<std::string, AreaFeatures>& coefficients, bool& missing) {
+  const CoarseModule& m = inv.at(name);
+  const auto it = coefficients.find(m.kind);
+  double area = 0;
+  if (it == coefficients.end()) missing = true;
+  else area = dot(m.features, it->second);
+  for (const auto& [sub, count] : m.submodules)
+    area += static_cast<double>(count) * predicted_total(inv, sub, coefficients, missing);
+  return area;
+}
+
+struct CalibrationConfig {
+  Design design;
+  Widths widths;
+  CoarseResult coarse;
+  double logic = 0, table = 0;  // synthesised
+};
+
+std::string top_of(const Inventory& inv, const std::string& base) {
+  for (const auto& [name, m] : inv)
+    if (m.kind == base) return name;
+  throw std::runtime_error("area model: the elaborated netlist has no module " + base);
+}
+
+}  // namespace
+
+CLI::App* add_area_model_command(CLI::App& app, AreaModelOptions& options) {
+  CLI::App* cmd = app.add_subcommand(
+      "area-model",
+      "calibrate the component area model on full syntheses of random configurations and "
+      "measure its error (each configuration left out of the fit in turn)");
+  cmd->add_option("--configs", options.configs, "random configurations per design")
+      ->check(CLI::Range(2, 10000))
+      ->capture_default_str();
+  cmd->add_option("--seed", options.seed, "seed of the random configurations")->capture_default_str();
+  cmd->add_option("--design", options.designs, "comma-separated designs, or all")->capture_default_str();
+  cmd->add_option("--jobs", options.jobs, "Yosys runs at a time (default: all cores)")
+      ->check(CLI::Range(1u, 256u));
+  cmd->add_option("--write", options.write_path, "write the model here (default: rtl/area_model.json)");
+  cmd->add_option("--json", options.json_path, "also write the per-configuration errors as JSON");
+  cmd->add_option("--cache", options.area.cache_dir, "cache folder (as cdsim area --cache)");
+  cmd->add_option("--liberty", options.area.liberty, "standard-cell liberty file")->capture_default_str();
+  return cmd;
+}
+
+int run_area_model_command(const AreaModelOptions& options) {
+  const std::vector<Design> designs = [&] {
+    std::vector<Design> out;
+    for (const Design& d : options.designs == "all" ? all_designs() : designs_from(options.designs))
+      if (has_rtl(d)) out.push_back(d);
+    return out;
+  }();
+  const std::string write_path = options.write_path.empty() ? default_area_model_path() : options.write_path;
+  check_output_folder("--write", write_path);
+  if (!options.json_path.empty()) check_output_folder("--json", options.json_path);
+  std::vector<CalibrationConfig> configs;
+  // Round robin over the designs, so that an interrupted calibration has them all.
+  for (int i = 0; i < options.configs; ++i)
+    for (const Design& d : designs) configs.push_back({d, random_widths(options.seed, d.name, i), {}, 0, 0});
+  fmt::print("area-model: {} designs x {} random configurations (seed {}), build {}\n", designs.size(),
+             options.configs, options.seed, kBuildRevision);
+  std::fflush(stdout);
+
+  // Full syntheses (cached), then the elaborations the model reads.
+  AreaOptions area = options.area;
+  area.estimate = false;
+  area.quiet = true;
+  std::vector<AreaJob> jobs;
+  for (const CalibrationConfig& c : configs) jobs.push_back({c.design, c.widths});
+  const std::vector<AreaReport> synthesised = synthesise_areas(jobs, area, options.jobs);
+  std::vector<std::map<std::string, ModuleStat>> unit_stats(configs.size()), table_stats(configs.size());
+  run_parallel(configs.size(), options.jobs, "area-model", "elaborations (Yosys, cached)", [&](size_t i) {
+    const UnitConfig u = prepare_unit(configs[i].design, configs[i].widths, area);
+    configs[i].coarse = coarse_pass(u);
+    unit_stats[i] = parse_stat(read_text_file(u.dir / "unit.log"));
+    if (u.has_table) table_stats[i] = parse_stat(read_text_file(u.dir / "table.log"));
+  });
+
+  // Samples: every distinct module with its synthesised own area.
+  std::vector<AreaSample> samples;
+  std::set<std::string> sampled;
+  const auto collect = [&](size_t i, const Inventory& inv, const std::map<std::string, ModuleStat>& stat,
+                           const std::string& what) {
+    for (const auto& [name, m] : inv) {
+      const auto it = stat.find(name);
+      if (it == stat.end())
+        throw std::runtime_error(fmt::format("area model: module {} of the {} elaborated but not in the "
+                                             "synthesis statistics",
+                                             name, what));
+      // One sample per module and configuration: a module's name encodes its
+      // parameters but not the widths it reads from cd_widths.svh.
+      if (sampled.insert(fmt::format("{} #{}", name, i)).second)
+        samples.push_back({m.kind, m.features, it->second.own_area, i});
+    }
+  };
+  for (size_t i = 0; i < configs.size(); ++i) {
+    configs[i].logic = synthesised[i].logic_area_um2;
+    collect(i, configs[i].coarse.unit, unit_stats[i], "unit");
+    if (!configs[i].coarse.table.empty()) {
+      configs[i].table = table_area(table_stats[i]);
+      collect(i, configs[i].coarse.table, table_stats[i], "flip-flop table");
+    }
+  }
+
+  // Each configuration predicted by a fit that has seen none of its modules.
+  struct Row {
+    double unit_error = 0, table_error = 0;
+    bool has_table = false, missing = false;
+  };
+  std::vector<Row> rows(configs.size());
+  for (size_t i = 0; i < configs.size(); ++i) {
+    const auto coefficients = fit_area_coefficients(samples, i);
+    Row& r = rows[i];
+    const double unit = predicted_total(configs[i].coarse.unit, top_of(configs[i].coarse.unit, "cd_scan_unit"),
+                                        coefficients, r.missing);
+    r.unit_error = (unit - configs[i].logic) / configs[i].logic;
+    if (!configs[i].coarse.table.empty()) {
+      r.has_table = true;
+      const double table = predicted_total(configs[i].coarse.table,
+                                           top_of(configs[i].coarse.table, "scanline_table"), coefficients,
+                                           r.missing);
+      r.table_error = (table - configs[i].table) / configs[i].table;
+    }
+  }
+
+  fmt::print("\nerror of the model's logic area against full synthesis, each configuration left out of "
+             "the fit\n{:<17} {:>8} {:>12} {:>11} {:>12} {:>11}\n",
+             "design", "configs", "mean |err|", "max |err|", "table mean", "table max");
+  nlohmann::json per_design = nlohmann::json::array();
+  double worst = 0, sum = 0;
+  size_t unpredicted = 0;
+  for (const Design& d : designs) {
+    double s = 0, m = 0, ts = 0, tm = 0;
+    size_t n = 0, tn = 0;
+    for (size_t i = 0; i < configs.size(); ++i) {
+      if (configs[i].design.name != d.name) continue;
+      if (rows[i].missing) {
+        ++unpredicted;
+        continue;
+      }
+      ++n;
+      s += std::abs(rows[i].unit_error);
+      m = std::max(m, std::abs(rows[i].unit_error));
+      if (rows[i].has_table) {
+        ++tn;
+        ts += std::abs(rows[i].table_error);
+        tm = std::max(tm, std::abs(rows[i].table_error));
+      }
+    }
+    const double mean = n ? s / static_cast<double>(n) : 0;
+    worst = std::max(worst, m);
+    sum += s;
+    fmt::print("{:<17} {:>8} {:>11.2f}% {:>10.2f}% {:>12} {:>11}\n", d.name, n, 100 * mean, 100 * m,
+               tn ? fmt::format("{:.2f}%", 100 * ts / static_cast<double>(tn)) : "-",
+               tn ? fmt::format("{:.2f}%", 100 * tm) : "-");
+    per_design.push_back({{"design", d.name}, {"configs", n}, {"mean_abs_error", mean}, {"max_abs_error", m},
+                          {"table_mean_abs_error", tn ? ts / static_cast<double>(tn) : 0.0},
+                          {"table_max_abs_error", tm}});
+  }
+  const size_t predicted = configs.size() - unpredicted;
+  fmt::print("{:<17} {:>8} {:>11.2f}% {:>10.2f}%\n", "all", predicted,
+             predicted ? 100 * sum / static_cast<double>(predicted) : 0.0, 100 * worst);
+  if (unpredicted)
+    fmt::print("{} configurations hold a module kind no other configuration has, so cannot be left out\n",
+               unpredicted);
+
+  // The model from every sample.
+  const auto coefficients = fit_area_coefficients(samples, std::numeric_limits<size_t>::max());
+  nlohmann::json coefficient_json = nlohmann::json::object();
+  for (const auto& [kind, c] : coefficients) coefficient_json[kind] = c;
+  nlohmann::json configs_json = nlohmann::json::array();
+  for (size_t i = 0; i < configs.size(); ++i)
+    configs_json.push_back({{"design", configs[i].design.name}, {"widths", describe(configs[i].widths)},
+                            {"logic_area_um2", configs[i].logic}, {"flop_table_area_um2", configs[i].table},
+                            {"error", rows[i].unit_error}, {"table_error", rows[i].table_error}});
+  const nlohmann::json model = {
+      {"flow", kCoarseFlow},
+      {"features", kAreaFeatures},
+      {"coefficients", coefficient_json},
+      {"liberty", liberty_name(options.area.liberty)},
+      {"rtl_hash", rtl_sources_hash()},
+      {"calibration",
+       {{"command", fmt::format("cdsim area-model --configs {} --seed {} --design {}", options.configs,
+                                options.seed, options.designs)},
+        {"build", kBuildRevision},
+        {"samples", samples.size()},
+        {"per_design", per_design},
+        {"configurations", configs_json}}}};
+  write_file_atomic(write_path, model.dump(1) + "\n");
+  fmt::print("\nwrote {} ({} module kinds, {} module samples)\n", write_path, coefficients.size(),
+             samples.size());
+  if (!options.json_path.empty()) {
+    write_file_atomic(options.json_path, model.at("calibration").dump(2) + "\n");
+    fmt::print("wrote {}\n", options.json_path);
+  }
+  return 0;
+}
+
+}  // namespace cdsim

@@ -1,0 +1,125 @@
+// The component area model's pieces that need no Yosys (app/area_model.cpp):
+// the features of word-level cells, counted by hand here; the per-kind least
+// squares, which must recover coefficients that generated the samples and
+// must not see the configuration it leaves out; and the random calibration
+// widths, which must be valid, in range and reproducible.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "area_model.hpp"
+#include "widths.hpp"
+
+namespace {
+
+using cdsim::AreaFeatures;
+using cdsim::AreaSample;
+
+// A Yosys JSON cell whose ports have the given bits: `live` net bits, then
+// `constant` constant bits ("0").
+nlohmann::json port(int live, int constant = 0) {
+  nlohmann::json bits = nlohmann::json::array();
+  for (int i = 0; i < live; ++i) bits.push_back(100 + i);
+  for (int i = 0; i < constant; ++i) bits.push_back("0");
+  return bits;
+}
+
+size_t feature(const char* name) {
+  for (size_t i = 0; i < cdsim::kAreaFeatures.size(); ++i)
+    if (std::string(cdsim::kAreaFeatures[i]) == name) return i;
+  ADD_FAILURE() << "no feature " << name;
+  return 0;
+}
+
+AreaFeatures features_of(const std::string& type, const nlohmann::json& connections) {
+  AreaFeatures f{};
+  cdsim::add_cell_features(type, {{"type", type}, {"connections", connections}}, f);
+  return f;
+}
+
+TEST(AreaModel, MultiplierFeatureCountsThePartialProductBitsThatReachTheKeptProduct) {
+  // 8 x 8 into 16 bits: all 64 partial-product bits.
+  EXPECT_EQ(features_of("$mul", {{"A", port(8)}, {"B", port(8)}, {"Y", port(16)}})[feature("mul_pp_bits")], 64);
+  // Into 8 bits: bit i of A meets bits 0 .. 7-i of B, 8+7+...+1 = 36.
+  EXPECT_EQ(features_of("$mul", {{"A", port(8)}, {"B", port(8)}, {"Y", port(8)}})[feature("mul_pp_bits")], 36);
+  // Constant bits of an operand make no partial products: 5 live x 3 live.
+  EXPECT_EQ(features_of("$mul", {{"A", port(5, 3)}, {"B", port(3, 5)}, {"Y", port(16)}})[feature("mul_pp_bits")], 15);
+}
+
+TEST(AreaModel, EachCellTypeCountsInItsOwnFeature) {
+  const auto only = [](const AreaFeatures& f, size_t index, double value) {
+    for (size_t i = 0; i < f.size(); ++i) EXPECT_EQ(f[i], i == index ? value : 0.0) << cdsim::kAreaFeatures[i];
+  };
+  only(features_of("$add", {{"A", port(12)}, {"B", port(12)}, {"Y", port(13)}}), feature("add_bits"), 13);
+  only(features_of("$lt", {{"A", port(9, 3)}, {"B", port(4)}, {"Y", port(1)}}), feature("compare_bits"), 9);
+  only(features_of("$eq", {{"A", port(6)}, {"B", port(0, 6)}, {"Y", port(1)}}), feature("equal_bits"), 6);
+  only(features_of("$mux", {{"A", port(10)}, {"B", port(10)}, {"S", port(1)}, {"Y", port(10)}}),
+       feature("mux_bits"), 10);
+  only(features_of("$pmux", {{"A", port(4)}, {"B", port(12)}, {"S", port(3)}, {"Y", port(4)}}),
+       feature("pmux_bits"), 12);
+  only(features_of("$sdffe", {{"D", port(7)}, {"Q", port(7)}}), feature("flop_bits"), 7);
+  only(features_of("$adff", {{"D", port(5)}, {"Q", port(5)}}), feature("async_flop_bits"), 5);
+  only(features_of("$shl", {{"A", port(16)}, {"B", port(4, 28)}, {"Y", port(16)}}), feature("shift_bits"), 64);
+  only(features_of("$xor", {{"A", port(3)}, {"B", port(3)}, {"Y", port(3)}}), feature("logic_bits"), 3);
+  only(features_of("$reduce_or", {{"A", port(20)}, {"Y", port(1)}}), feature("reduce_bits"), 20);
+}
+
+// Samples of two kinds made by known coefficients (with a little noise): the
+// fit must give them back, and must ignore the configuration it leaves out.
+TEST(AreaModel, FitRecoversTheCoefficientsPerKindAndLeavesTheConfigurationOut) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> width(1, 60), noise(-1, 1);
+  AreaFeatures truth_a{}, truth_b{};
+  for (size_t i = 0; i < truth_a.size(); ++i) {
+    truth_a[i] = 10.0 + 5.0 * static_cast<double>(i);
+    truth_b[i] = 300.0 - 20.0 * static_cast<double>(i);
+  }
+  std::vector<AreaSample> samples;
+  for (size_t config = 0; config < 40; ++config)
+    for (const auto& [kind, truth] : {std::pair{"a", truth_a}, std::pair{"b", truth_b}}) {
+      AreaSample s;
+      s.kind = kind;
+      s.config = config;
+      for (double& f : s.features) f = std::round(width(rng));
+      for (size_t i = 0; i < s.features.size(); ++i) s.area += truth[i] * s.features[i];
+      s.area += noise(rng);
+      samples.push_back(s);
+    }
+  // A wild sample in configuration 3: the fit without it must not feel it.
+  samples.push_back({"a", samples[0].features, 1e9, 3});
+  const auto without = cdsim::fit_area_coefficients(samples, 3);
+  ASSERT_EQ(without.size(), 2u);
+  for (size_t i = 0; i < truth_a.size(); ++i) {
+    EXPECT_NEAR(without.at("a")[i], truth_a[i], 0.1) << cdsim::kAreaFeatures[i];
+    EXPECT_NEAR(without.at("b")[i], truth_b[i], 0.1) << cdsim::kAreaFeatures[i];
+  }
+  const auto with = cdsim::fit_area_coefficients(samples, 1000);
+  double moved = 0;
+  for (size_t i = 0; i < truth_a.size(); ++i) moved += std::abs(with.at("a")[i] - truth_a[i]);
+  EXPECT_GT(moved, 1000) << "the wild sample is in the fit that keeps configuration 3";
+}
+
+TEST(AreaModel, RandomWidthsAreValidInRangeAndReproducible) {
+  std::vector<int> distinct_q;
+  for (int i = 0; i < 50; ++i) {
+    const cdsim::Widths w = cdsim::random_widths(1, "cd-linear", i);
+    EXPECT_NO_THROW(cdsim::validate(w));
+    for (const cdsim::ParamInfo& p : cdsim::param_table()) {
+      EXPECT_GE(w.*(p.field), p.min_value) << p.name;
+      EXPECT_LE(w.*(p.field), p.max_value) << p.name;
+    }
+    EXPECT_EQ(cdsim::describe(w), cdsim::describe(cdsim::random_widths(1, "cd-linear", i)));
+    distinct_q.push_back(w.q_bits);
+  }
+  EXPECT_NE(cdsim::describe(cdsim::random_widths(1, "cd-linear", 0)),
+            cdsim::describe(cdsim::random_widths(2, "cd-linear", 0)));
+  EXPECT_NE(cdsim::describe(cdsim::random_widths(1, "cd-linear", 0)),
+            cdsim::describe(cdsim::random_widths(1, "divide", 0)));
+  std::sort(distinct_q.begin(), distinct_q.end());
+  EXPECT_GT(std::unique(distinct_q.begin(), distinct_q.end()) - distinct_q.begin(), 10);
+}
+
+}  // namespace

@@ -1,0 +1,49 @@
+#!/usr/bin/env bash
+# The component area model (rtl/area_model.json) against full synthesis: every
+# design at narrow widths, which rtl_synth_design_blocks has synthesised into
+# AREA_CACHE, must be estimated within 5% of its synthesised logic area, with
+# the same blocks, the same table bits and the estimate marked as such; and
+# `sweep --area-model` must report the figures `cdsim area --model` gives.
+# Usage: check_area_model.sh CDSIM WORKDIR "NARROW SETTINGS" AREA_CACHE
+set -euo pipefail
+cdsim=$1 work=$2 narrow=$3 cache=$4
+rm -rf "$work" && mkdir -p "$work"
+args=()
+for s in $narrow; do args+=(--set "$s"); done
+designs=$("$cdsim" designs | awk '{print $1}')
+for d in $designs; do
+  "$cdsim" area --design "$d" "${args[@]}" --cache "$cache" --json "$work/synth_$d.json" > /dev/null
+  "$cdsim" area --model --design "$d" "${args[@]}" --cache "$cache" --json "$work/model_$d.json" > "$work/model_$d.txt"
+done
+scene=$(dirname "$0")/data/small_scene.tri
+"$cdsim" sweep --scene "$scene" --design cd-linear,divide "${args[@]}" --area-model --out "$work/sweep" \
+  > "$work/sweep.txt"
+
+/usr/bin/python3 - "$work" $designs <<'PY'
+import csv, json, sys
+work, designs = sys.argv[1], sys.argv[2:]
+failures = []
+def expect(cond, what):
+    print(("ok   " if cond else "FAIL ") + what)
+    if not cond: failures.append(what)
+for d in designs:
+    s = json.load(open(f"{work}/synth_{d}.json"))
+    m = json.load(open(f"{work}/model_{d}.json"))
+    err = (m["logic_area_um2"] - s["logic_area_um2"]) / s["logic_area_um2"]
+    expect(abs(err) <= 0.05, f"{d}: model {m['logic_area_um2']:.0f} um^2 against synthesis "
+                             f"{s['logic_area_um2']:.0f} um^2 ({100 * err:+.2f}%, at most 5%)")
+    expect([b["name"] for b in m["blocks"]] == [b["name"] for b in s["blocks"]], f"{d}: the same blocks")
+    expect(m["sram_bits"] == s["sram_bits"], f"{d}: the same table bits")
+    expect(m["estimated"] and not s["estimated"], f"{d}: the estimate says it is one")
+    if s["flop_table_area_um2"] > 0:
+        terr = (m["flop_table_area_um2"] - s["flop_table_area_um2"]) / s["flop_table_area_um2"]
+        expect(abs(terr) <= 0.05, f"{d}: flip-flop table within 5% ({100 * terr:+.2f}%)")
+    expect("estimated by the component area model" in open(f"{work}/model_{d}.txt").read(),
+           f"{d}: cdsim area --model says the figure is an estimate")
+rows = list(csv.DictReader(open(f"{work}/sweep/sweep.csv")))
+expect(len(rows) == 2, "sweep --area-model: two configurations")
+for r in rows:
+    m = json.load(open(f"{work}/model_{r['design']}.json"))
+    expect(abs(float(r["total_area_um2"]) - m["total_area_um2"]) <= 1, f"sweep --area-model: {r['design']} as cdsim area --model")
+sys.exit(1 if failures else 0)
+PY
