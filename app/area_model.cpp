@@ -195,6 +195,13 @@ CoarseResult coarse_pass(const UnitConfig& config) {
   return r;
 }
 
+// A kind's own coefficients, else those fitted to every kind.
+std::map<std::string, AreaFeatures>::const_iterator coefficients_for(
+    const std::map<std::string, AreaFeatures>& coefficients, const std::string& kind) {
+  const auto it = coefficients.find(kind);
+  return it != coefficients.end() ? it : coefficients.find(kAnyKind);
+}
+
 double dot(const AreaFeatures& a, const AreaFeatures& b) {
   double s = 0;
   for (size_t i = 0; i < kFeatureCount; ++i) s += a[i] * b[i];
@@ -206,7 +213,7 @@ std::map<std::string, ModuleStat> predicted_stat(const Inventory& inv, const Are
                                                  const std::string& what) {
   std::map<std::string, ModuleStat> out;
   for (const auto& [name, m] : inv) {
-    const auto it = model.coefficients.find(m.kind);
+    const auto it = coefficients_for(model.coefficients, m.kind);
     if (it == model.coefficients.end())
       throw std::runtime_error(fmt::format(
           "the area model has no coefficients for module '{}' of the {}: calibrate it with "
@@ -314,9 +321,14 @@ std::map<std::string, AreaFeatures> fit_area_coefficients(const std::vector<Area
                                                           size_t leave_out) {
   std::map<std::string, std::vector<const AreaSample*>> by_kind;
   for (const AreaSample& s : samples)
-    if (s.config != leave_out) by_kind[s.kind].push_back(&s);
+    if (s.config != leave_out) {
+      by_kind[s.kind].push_back(&s);
+      by_kind[kAnyKind].push_back(&s);
+    }
   std::map<std::string, AreaFeatures> out;
   for (const auto& [kind, list] : by_kind) {
+    // A kind with too few samples for its own fit takes the fit of every kind.
+    if (kind != kAnyKind && list.size() < kSamplesPerKindFit) continue;
     Eigen::MatrixXd x(static_cast<Eigen::Index>(list.size()), static_cast<Eigen::Index>(kFeatureCount));
     Eigen::VectorXd y(static_cast<Eigen::Index>(list.size()));
     for (size_t r = 0; r < list.size(); ++r) {
@@ -340,7 +352,7 @@ namespace {
 double predicted_total(const Inventory& inv, const std::string& name,
                        const std::map<std::string, AreaFeatures>& coefficients, bool& missing) {
   const CoarseModule& m = inv.at(name);
-  const auto it = coefficients.find(m.kind);
+  const auto it = coefficients_for(coefficients, m.kind);
   double area = 0;
   if (it == coefficients.end()) missing = true;
   else area = dot(m.features, it->second);
@@ -370,7 +382,7 @@ CLI::App* add_area_model_command(CLI::App& app, AreaModelOptions& options) {
       "calibrate the component area model on full syntheses of random configurations and "
       "measure its error (each configuration left out of the fit in turn)");
   cmd->add_option("--configs", options.configs, "random configurations per design")
-      ->check(CLI::Range(2, 10000))
+      ->check(CLI::Range(1, 10000))
       ->capture_default_str();
   cmd->add_option("--seed", options.seed, "seed of the random configurations")->capture_default_str();
   cmd->add_option("--design", options.designs, "comma-separated designs, or all")->capture_default_str();

@@ -28,6 +28,10 @@ inline constexpr std::array<const char*, 12> kAreaFeatures = {
     "mul_pp_bits", "add_bits",   "compare_bits", "equal_bits", "mux_bits",   "pmux_bits",
     "flop_bits",   "async_flop_bits", "shift_bits", "logic_bits", "reduce_bits", "other_bits"};
 using AreaFeatures = std::array<double, kAreaFeatures.size()>;
+// The coefficients of a kind with fewer samples than kSamplesPerKindFit are
+// those fitted to every kind's samples together, stored under kAnyKind.
+inline constexpr const char* kAnyKind = "*";
+inline constexpr size_t kSamplesPerKindFit = 2 * kAreaFeatures.size();
 
 // Per module kind, area = coefficients . features.
 struct AreaModel {
@@ -63,7 +67,7 @@ struct AreaSample {
   size_t config = 0;
 };
 // Least squares per kind over the samples not of configuration `leave_out`
-// (the smallest coefficients among equal fits).
+// (the smallest coefficients among equal fits), and over all of them as kAnyKind.
 std::map<std::string, AreaFeatures> fit_area_coefficients(const std::vector<AreaSample>& samples,
                                                           size_t leave_out);
 

@@ -5,7 +5,6 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <charconv>
 #include <cstring>
 #include <filesystem>
 #include <stdexcept>
@@ -51,23 +50,6 @@ std::vector<Design> designs_from(const std::string& list) {
 
 PreparedScene prepared_scene(const CommonOptions& options, const Widths& widths) {
   return prepare(load_scene(options.scene, options.scene_options), widths);
-}
-
-Shard parse_shard(const std::string& option, const std::string& text) {
-  const auto number = [&](std::string_view part, uint64_t& value) {
-    if (part.empty() || part.size() > 7 || part.find_first_not_of("0123456789") != std::string_view::npos)
-      return false;
-    const auto [end, error] = std::from_chars(part.data(), part.data() + part.size(), value);
-    return error == std::errc() && end == part.data() + part.size();
-  };
-  const size_t slash = text.find('/');
-  Shard s;
-  if (slash == std::string::npos || !number(std::string_view(text).substr(0, slash), s.index) ||
-      !number(std::string_view(text).substr(slash + 1), s.count) || s.count < 1 || s.count > 1'000'000 ||
-      s.index < 1 || s.index > s.count)
-    throw std::invalid_argument(fmt::format(
-        "{} '{}': expected I/N, the I-th of N shards, with 1 <= I <= N <= 1000000", option, text));
-  return s;
 }
 
 }  // namespace cdsim

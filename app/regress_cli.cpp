@@ -44,6 +44,10 @@ CLI::App* add_regress_command(CLI::App& app, RegressOptions& options) {
   cmd->add_option("--design", options.design,
                   "a design (see 'cdsim designs'), a comma-separated list, or mix (all eleven in turn)")
       ->capture_default_str();
+  cmd->add_option("--shard", options.shard,
+                  "I/N: run only the I-th of N shards (every N-th triangle from the I-th, each with "
+                  "the back-pressure it has in the whole run); cdsim merge joins the summaries");
+  cmd->add_option("--json", options.json_path, "also write the summary as JSON (what cdsim merge joins)");
   cmd->add_option("--only", options.only, "run only triangle N of the source, from 0 (to chase a mismatch)")
       ->check(cli::integer_in(0, std::numeric_limits<int64_t>::max()));
   return cmd;

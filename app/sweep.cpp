@@ -23,6 +23,7 @@
 #include "interrupt.hpp"
 #include "progress.hpp"
 #include "report.hpp"
+#include "shard.hpp"
 
 namespace cdsim {
 
@@ -371,15 +372,88 @@ namespace cdsim {
 
 CLI::App* add_merge_command(CLI::App& app, MergeOptions& options) {
   CLI::App* cmd = app.add_subcommand(
-      "merge", "join the output folders of a sharded sweep (sweep --shard I/N) into the files the "
-               "whole sweep writes, byte for byte");
-  cmd->add_option("shards", options.shards, "the shards' output folders, every shard once")->required();
-  cmd->add_option("--out", options.out, "output folder (created; locked while merging)")->required();
+      "merge", "join shards: the output folders of a sweep --shard I/N into the files the whole "
+               "sweep writes, byte for byte; or the regress --shard I/N --json summaries into one "
+               "(exit 1 if any shard mismatched)");
+  cmd->add_option("shards", options.shards,
+                  "the shards' sweep output folders, or their regress --json files; every shard once")
+      ->required();
+  cmd->add_option("--out", options.out, "output folder (sweeps; created, locked) or JSON file (regressions)")
+      ->required();
   return cmd;
 }
 
+namespace {
+
+// Regression shards (regress --shard I/N --json FILE): their counts summed.
+int merge_regressions(const MergeOptions& options) {
+  std::vector<nlohmann::json> parts;
+  for (const std::string& file : options.shards) {
+    nlohmann::json j;
+    try {
+      j = nlohmann::json::parse(read_text_file(file));
+    } catch (const nlohmann::json::exception& e) {
+      throw std::runtime_error(fmt::format("{}: not JSON: {}", file, e.what()));
+    }
+    if (!j.is_object() || j.value("kind", "") != "cdsim regress" || !j.contains("shard"))
+      throw std::runtime_error(fmt::format(
+          "{}: not the summary of a regression shard (regress --shard I/N --json FILE)", file));
+    parts.push_back(std::move(j));
+  }
+  static const std::vector<std::string> summed = {
+      "triangles", "fragments", "mismatches", "hangs", "rtl_cycles", "model_cycles", "setups_compared",
+      "table_writes_compared", "y_major_triangles"};
+  const auto header = [&](nlohmann::json j) {
+    for (const std::string& key : summed) j.erase(key);
+    for (const char* key : {"shard", "flags", "failed_triangles"}) j.erase(key);
+    return j;
+  };
+  const uint64_t count = parts.front().at("shard").at("count").get<uint64_t>();
+  std::map<uint64_t, std::string> file_of;
+  nlohmann::json merged = header(parts.front());
+  for (const std::string& key : summed) merged[key] = 0;
+  merged["flags"] = nlohmann::json::object();
+  std::vector<uint64_t> failed;
+  for (size_t i = 0; i < parts.size(); ++i) {
+    const nlohmann::json& p = parts[i];
+    if (header(p) != header(parts.front()) || p.at("shard").at("count").get<uint64_t>() != count)
+      throw std::runtime_error(fmt::format("{} and {} are shards of different regressions (source, seed, widths, "
+                                           "design, back-pressure, build or shard count differ)",
+                                           options.shards.front(), options.shards[i]));
+    const uint64_t index = p.at("shard").at("index").get<uint64_t>();
+    const auto [it, added] = file_of.emplace(index, options.shards[i]);
+    if (!added)
+      throw std::runtime_error(fmt::format("{} and {} are both shard {}/{}", it->second, options.shards[i], index,
+                                           count));
+    for (const std::string& key : summed) merged[key] = merged[key].get<int64_t>() + p.at(key).get<int64_t>();
+    for (const auto& [flag, n] : p.at("flags").items())
+      merged["flags"][flag] = merged["flags"].value(flag, int64_t{0}) + n.get<int64_t>();
+    for (const auto& f : p.at("failed_triangles")) failed.push_back(f.get<uint64_t>());
+  }
+  std::string missing;
+  for (uint64_t i = 1; i <= count; ++i)
+    if (!file_of.count(i)) missing += fmt::format("{}{}/{}", missing.empty() ? "" : ", ", i, count);
+  if (!missing.empty()) throw std::runtime_error(fmt::format("shard {} missing: give every shard once", missing));
+  std::sort(failed.begin(), failed.end());
+  merged["failed_triangles"] = failed;
+  merged["shards"] = count;
+  check_output_folder("--out", options.out);
+  write_file_atomic(options.out, merged.dump(2) + "\n");
+  const int64_t bad = merged["mismatches"].get<int64_t>() + merged["hangs"].get<int64_t>();
+  fmt::print("merged {} regression shards: {} triangles, {} fragments compared, {} mismatches, {} hangs, RTL "
+             "cycles {}, model cycles {}; wrote {}\n",
+             count, merged["triangles"].get<int64_t>(), merged["fragments"].get<int64_t>(),
+             merged["mismatches"].get<int64_t>(), merged["hangs"].get<int64_t>(),
+             merged["rtl_cycles"].get<int64_t>(), merged["model_cycles"].get<int64_t>(), options.out);
+  return bad == 0 ? 0 : 1;
+}
+
+}  // namespace
+
 int run_merge_command(const MergeOptions& options) {
   namespace fs = std::filesystem;
+  std::error_code ignored;
+  if (fs::is_regular_file(options.shards.front(), ignored)) return merge_regressions(options);
   struct Part {
     std::string folder;
     nlohmann::json json;

@@ -27,6 +27,16 @@
 
 namespace cdsim::rtl {
 
+// What a run compared, for `regress --json` and `cdsim merge`.
+struct BenchSummary {
+  int64_t triangles = 0, fragments = 0, mismatches = 0, hangs = 0;
+  int64_t rtl_cycles = 0, model_cycles = 0, setups = 0, table_writes = 0, y_major = 0;
+  std::vector<std::pair<std::string, int64_t>> flags;  // triangles with each flag
+  std::vector<uint64_t> failed;  // numbers of the triangles that failed
+  int64_t clock_cycles = 0;
+  double seconds = 0;
+};
+
 struct BenchOptions {
   uint64_t seed = 1;          // of the back-pressure (and named in every report)
   double backpressure = 0.0;  // probability that the fragment sink stalls a cycle
@@ -34,7 +44,9 @@ struct BenchOptions {
   // Per job: cycles without its record before a hang is reported
   // (regress.cpp, hang_cycle_limit: scaled by the model's cycles and the back-pressure).
   std::vector<int64_t> cycle_limits;
+  BenchSummary* summary = nullptr;  // filled at the end, if given
 };
+
 
 inline uint64_t mix_seed(uint64_t seed, uint64_t index) {
   uint64_t z = seed + 0x9e3779b97f4a7c15ull * (index + 1);
@@ -173,7 +185,8 @@ class Bench : public sc_core::sc_module {
     }
     if (in_flight_ && ++busy_cycles_ > cycle_limit_) {
       std::cout << fmt::format("HANG seed {} triangle {}: no record after {} cycles\n  triangle {}\n",
-                               options_.seed, current_, busy_cycles_, describe_job(jobs_[current_]));
+                               options_.seed, jobs_[current_].number, busy_cycles_,
+                               describe_job(jobs_[current_]));
       hung_ = true;
       sc_core::sc_pause();
       return;
@@ -216,7 +229,7 @@ class Bench : public sc_core::sc_module {
       tri_valid.write(true);
       presenting_ = true;
       current_ = next_job_++;
-      if (checking_) scoreboard_.begin(current_, job);
+      if (checking_) scoreboard_.begin(job.number, job);
     } else {
       tri_valid.write(presenting_);
     }
@@ -228,7 +241,7 @@ class Bench : public sc_core::sc_module {
       stalls_ = 0;
       busy_cycles_ = 0;
       cycle_limit_ = options_.cycle_limits.at(current_);
-      stall_rng_.seed(mix_seed(options_.seed, current_));
+      stall_rng_.seed(mix_seed(options_.seed, jobs_[current_].number));
     } else if (!presenting_ && !in_flight_) {
       tri_valid.write(false);
       if (next_job_ >= last_job_) sc_core::sc_pause();
@@ -315,6 +328,21 @@ int run_bench(const std::vector<Job>& jobs, const Widths& widths, const BenchOpt
       triangles, scoreboard.fragments_compared(), mismatches, scoreboard.rtl_cycles(),
       scoreboard.model_cycles(), seconds > 0 ? double(clock_cycles) / seconds : 0.0);
   std::cout << fmt::format("({} clock cycles simulated in {:.2f} s)\n", clock_cycles, seconds);
+  if (BenchSummary* s = options.summary) {
+    s->triangles = triangles;
+    s->fragments = scoreboard.fragments_compared();
+    s->mismatches = mismatches;
+    s->hangs = bench.hung() ? 1 : 0;
+    s->rtl_cycles = scoreboard.rtl_cycles();
+    s->model_cycles = scoreboard.model_cycles();
+    s->setups = scoreboard.setups_compared();
+    s->table_writes = scoreboard.writes_compared();
+    s->y_major = scoreboard.y_major();
+    s->flags = scoreboard.flag_counts();
+    if (bench.failed()) s->failed.push_back(jobs[bench.failed_index()].number);
+    s->clock_cycles = clock_cycles;
+    s->seconds = seconds;
+  }
   return mismatches == 0 ? 0 : 1;
 }
 

@@ -5,6 +5,7 @@
 #include "regress.hpp"
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 #include <systemc.h>
 
 #include <unistd.h>
@@ -30,6 +31,9 @@
 #include "rtl_cache.hpp"
 #include "scene.hpp"
 #include "scoreboard.hpp"
+#include "shard.hpp"
+#include "cache_files.hpp"
+#include "report.hpp"
 
 // SystemC's library refers to sc_main; cdsim has its own main and starts the
 // kernel itself, so this one is never called.
@@ -128,18 +132,18 @@ std::vector<int64_t> hang_limits(const std::vector<Job>& jobs, const Widths& wid
   return limits;
 }
 
-// The folder of --trace must exist and be writable before minutes of simulation.
-void check_trace_path(const std::string& trace) {
-  if (trace.empty()) return;
+// The folder of an output file (--trace, --json) must exist and be writable
+// before minutes of simulation.
+void check_output_path(const std::string& option, const std::string& path) {
+  if (path.empty()) return;
   namespace fs = std::filesystem;
-  const fs::path folder = fs::path(trace).parent_path();
+  const fs::path folder = fs::path(path).parent_path();
   std::error_code ignored;
   if (!folder.empty() && !fs::is_directory(folder, ignored))
-    throw std::invalid_argument(fmt::format("--trace {}: the folder {} does not exist", trace, folder.string()));
-  if (fs::is_directory(trace, ignored))
-    throw std::invalid_argument(fmt::format("--trace {}: is a folder", trace));
+    throw std::invalid_argument(fmt::format("{} {}: the folder {} does not exist", option, path, folder.string()));
+  if (fs::is_directory(path, ignored)) throw std::invalid_argument(fmt::format("{} {}: is a folder", option, path));
   if (::access(folder.empty() ? "." : folder.c_str(), W_OK) != 0)
-    throw std::invalid_argument(fmt::format("--trace {}: cannot write into {}: {}", trace,
+    throw std::invalid_argument(fmt::format("{} {}: cannot write into {}: {}", option, path,
                                             folder.empty() ? "." : folder.string(), std::strerror(errno)));
 }
 
@@ -157,7 +161,8 @@ int regress(const Widths* given) {
   Widths widths = given ? *given : widths_of(options.widths);
   apply_settings(widths, options.settings);
   validate(widths);
-  check_trace_path(options.trace);
+  check_output_path("--trace", options.trace);
+  check_output_path("--json", options.json_path);
   const bool exact = given || !options.settings.empty();
   const std::string builtin = exact ? builtin_config_of(widths) : options.widths;
   std::string label = given ? "as sized" : options.widths;
@@ -167,9 +172,11 @@ int regress(const Widths* given) {
   const std::vector<const Design*> designs = designs_for(options.design);
   std::cout << fmt::format("regress: seed {}\n", options.seed);
   std::vector<Job> jobs;
+  std::string source;
   if (options.random > 0 && !options.scene_and_random) {
     jobs = random_jobs(options.random, options.seed, widths, designs);
-    std::cout << fmt::format("source: {} random triangles (seed {})\n", options.random, options.seed);
+    source = fmt::format("{} random triangles (seed {})", options.random, options.seed);
+    std::cout << "source: " << source << '\n';
   } else {
     const PreparedScene scene = prepare(load_scene(options.scene, options.scene_options), widths);
     for (size_t i = 0; i < scene.unit.size(); ++i) {
@@ -181,14 +188,28 @@ int regress(const Widths* given) {
       job.origin = fmt::format("scene {} triangle {}", scene.scene.name, i);
       jobs.push_back(std::move(job));
     }
-    std::cout << fmt::format("source: scene {} ({} triangles, {}x{})\n", scene.scene.name,
-                             jobs.size(), scene.scene.width, scene.scene.height);
+    source = fmt::format("scene {} ({} triangles, {}x{})", scene.scene.name, jobs.size(), scene.scene.width,
+                         scene.scene.height);
+    std::cout << "source: " << source << '\n';
   }
   if (options.random > 0 && options.scene_and_random) {
     for (Job& job : random_jobs(options.random, options.seed, widths, designs))
       jobs.push_back(std::move(job));
     std::cout << fmt::format("source: then {} random triangles (seed {})\n", options.random,
                              options.seed);
+    source += fmt::format(", then {} random triangles (seed {})", options.random, options.seed);
+  }
+  for (size_t i = 0; i < jobs.size(); ++i) jobs[i].number = i;
+  const size_t source_triangles = jobs.size();
+  const Shard shard = options.shard.empty() ? Shard{} : parse_shard("--shard", options.shard);
+  if (!shard.whole()) {
+    if (options.only >= 0) throw std::invalid_argument("--shard and --only: give one of them");
+    std::vector<Job> held;
+    for (Job& job : jobs)
+      if (shard.holds(job.number)) held.push_back(std::move(job));
+    jobs = std::move(held);
+    std::cout << fmt::format("shard {}/{}: {} of the {} triangles\n", shard.index, shard.count, jobs.size(),
+                             source_triangles);
   }
   if (options.only >= 0) {
     if (static_cast<size_t>(options.only) >= jobs.size())
@@ -204,6 +225,8 @@ int regress(const Widths* given) {
   bench_options.backpressure = options.backpressure;
   bench_options.trace = options.trace;
   bench_options.cycle_limits = hang_limits(jobs, widths, options.backpressure);
+  BenchSummary summary;
+  bench_options.summary = &summary;
   std::cout << fmt::format(
       "hang limit: 4 x (model cycles + pixels x p / (1 - p)) + 1000 per triangle, at most {}\n",
       bench_options.cycle_limits.empty()
@@ -220,6 +243,23 @@ int regress(const Widths* given) {
   throw_if_interrupted();
   if (!options.trace.empty() && !std::filesystem::exists(options.trace))
     throw std::runtime_error(fmt::format("--trace {}: the waveform was not written", options.trace));
+  if (!options.json_path.empty()) {
+    nlohmann::json flags = nlohmann::json::object();
+    for (const auto& [name, count] : summary.flags) flags[name] = count;
+    nlohmann::json j = {
+        {"kind", "cdsim regress"}, {"build", build_id()}, {"seed", options.seed},
+        {"source", source}, {"source_triangles", source_triangles}, {"widths", describe(widths)},
+        {"design", options.design}, {"backpressure", options.backpressure},
+        {"triangles", summary.triangles}, {"fragments", summary.fragments},
+        {"mismatches", summary.mismatches}, {"hangs", summary.hangs}, {"rtl_cycles", summary.rtl_cycles},
+        {"model_cycles", summary.model_cycles}, {"setups_compared", summary.setups},
+        {"table_writes_compared", summary.table_writes}, {"y_major_triangles", summary.y_major},
+        {"flags", flags}, {"failed_triangles", summary.failed}};
+    if (!shard.whole()) j["shard"] = {{"index", shard.index}, {"count", shard.count}};
+    if (options.only >= 0) j["only"] = options.only;
+    write_file_atomic(options.json_path, j.dump(2) + "\n");
+    std::cout << fmt::format("wrote {}\n", options.json_path);
+  }
   return status;
 }
 

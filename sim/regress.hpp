@@ -28,6 +28,8 @@ struct RegressOptions {
   std::vector<std::string> settings;  // NAME=VALUE on top of `widths`
   std::string rtl_cache;              // folder of the RTL verilated for --set widths
   bool scene_and_random = false;      // the scene, then `random` triangles (size --verify)
+  std::string shard;                  // "I/N": every N-th triangle from the I-th (cdsim merge joins them)
+  std::string json_path;              // the summary as JSON
 };
 
 // Registers the `regress` subcommand and its options on app

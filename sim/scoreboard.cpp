@@ -135,6 +135,13 @@ bool Scoreboard::record(const RtlRecord& a, int64_t stall_cycles) {
   return true;
 }
 
+std::vector<std::pair<std::string, int64_t>> Scoreboard::flag_counts() const {
+  std::vector<std::pair<std::string, int64_t>> out;
+  for (int bit = 0; bit < flag::kCount; ++bit)
+    out.emplace_back(flag::name(bit), flagged_[static_cast<size_t>(bit)]);
+  return out;
+}
+
 std::string Scoreboard::flag_census() const {
   std::string text = "flags (triangles):";
   for (int bit = 0; bit < flag::kCount; ++bit)

@@ -26,6 +26,7 @@ struct Job {
   const Design* design = nullptr;
   int viewport_width = 0, viewport_height = 0;
   std::string origin;  // "scene triangle 12", "random 40 (sliver)"
+  uint64_t number = 0;  // its index in the whole source: seeds its back-pressure, names it in reports
 };
 
 struct RtlFragment {
@@ -76,6 +77,9 @@ class Scoreboard {
   // Triangles whose record raised each flag, and banded / y-major triangles:
   // evidence that a width configuration really exercises its corners.
   std::string flag_census() const;
+  // Triangles with each flag, by name; y-major triangles.
+  std::vector<std::pair<std::string, int64_t>> flag_counts() const;
+  int64_t y_major() const { return y_major_; }
 
  private:
   bool fail(const std::string& where, const char* field, int64_t expected, int64_t actual);

@@ -90,8 +90,12 @@ TEST(AreaModel, FitRecoversTheCoefficientsPerKindAndLeavesTheConfigurationOut) {
     }
   // A wild sample in configuration 3: the fit without it must not feel it.
   samples.push_back({"a", samples[0].features, 1e9, 3});
+  // Kind "c" has too few samples for a fit of its own: it takes the fit of all kinds.
+  for (size_t config = 0; config < cdsim::kSamplesPerKindFit - 1; ++config)
+    samples.push_back({"c", samples[2 * config].features, samples[2 * config].area, config});
   const auto without = cdsim::fit_area_coefficients(samples, 3);
-  ASSERT_EQ(without.size(), 2u);
+  ASSERT_EQ(without.size(), 3u);
+  EXPECT_TRUE(without.count("a") && without.count("b") && without.count(cdsim::kAnyKind));
   for (size_t i = 0; i < truth_a.size(); ++i) {
     EXPECT_NEAR(without.at("a")[i], truth_a[i], 0.1) << cdsim::kAreaFeatures[i];
     EXPECT_NEAR(without.at("b")[i], truth_b[i], 0.1) << cdsim::kAreaFeatures[i];
