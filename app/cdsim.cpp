@@ -5,6 +5,8 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cmath>
+#include <iterator>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -19,6 +21,7 @@
 #include "size.hpp"
 #include "sweep.hpp"
 #include "evaluate.hpp"
+#include "exact.hpp"
 #include "hard_cases.hpp"
 #include "regress.hpp"
 #include "report.hpp"
@@ -31,17 +34,43 @@ namespace {
 
 using namespace cdsim;
 
+// Every fragment of one design as CSV: the output u, v as numbers (exact in
+// binary: integers over 2^out_frac), the exact reference's, and flag names.
+class FragmentDump {
+ public:
+  explicit FragmentDump(int out_frac) : scale_(std::ldexp(1.0, -out_frac)) {
+    fmt::format_to(std::back_inserter(text_), "triangle,x,y,u,v,exact_u,exact_v,flags\n");
+  }
+  void add(int64_t triangle, const Fragment& f, const ExactSample& exact) {
+    std::string flags;
+    for (int bit = 0; bit < flag::kCount; ++bit)
+      if ((f.flags >> bit) & 1) flags += (flags.empty() ? "" : "|") + std::string(flag::name(bit));
+    fmt::format_to(std::back_inserter(text_), "{},{},{},{},{},{},{},{}\n", triangle, f.x, f.y,
+                   static_cast<double>(f.u) * scale_, static_cast<double>(f.v) * scale_,
+                   static_cast<double>(exact.u), static_cast<double>(exact.v), flags);
+  }
+  std::string text() const { return fmt::to_string(text_); }
+
+ private:
+  double scale_;
+  fmt::memory_buffer text_;
+};
+
 int run_command(const CommonOptions& options, const std::string& json_path, bool show_worst,
-                bool with_area) {
+                bool with_area, const std::string& dump_path) {
   const Widths widths = widths_from(options);
   const std::vector<Design> designs = designs_from(options.designs);
   if (!json_path.empty()) check_output_folder("--json", json_path);
+  if (!dump_path.empty()) check_output_folder("--dump", dump_path);
   const PreparedScene scene = prepare(load_scene(options.scene, options.scene_options), widths);
   std::cout << provenance(scene.scene, widths) << std::endl;  // before the long part
   std::vector<DesignResult> results;
+  FragmentDump dump(widths.out_frac);
+  const FragmentVisitor to_dump = [&](int64_t t, const Fragment& f, const ExactSample& x) { dump.add(t, f, x); };
   for (const Design& d : designs) {
     if (isatty(fileno(stderr))) fmt::print(stderr, "running {} ...\r", d.name);
-    results.push_back(evaluate(scene, d, widths));
+    const bool dumped = !dump_path.empty() && results.empty();
+    results.push_back(evaluate(scene, d, widths, true, dumped ? &to_dump : nullptr));
   }
   std::cout << results_table(results, widths);
   if (show_worst) std::cout << worst_pixels(results, scene.scene, widths);
@@ -64,6 +93,11 @@ int run_command(const CommonOptions& options, const std::string& json_path, bool
   if (!json_path.empty()) {
     write_file_atomic(json_path, json.dump(2) + '\n');
     std::cout << "wrote " << json_path << '\n';
+  }
+  if (!dump_path.empty()) {
+    write_file_atomic(dump_path, dump.text());
+    std::cout << fmt::format("wrote {} ({} fragments of {})\n", dump_path, results.front().pixels,
+                             results.front().design.name);
   }
   return 0;
 }
@@ -135,7 +169,7 @@ int dispatch(Cli& cli) {
     for (const Design& d : all_designs()) fmt::print("{:<17} {}\n", d.name, d.summary);
     return 0;
   }
-  return run_command(cli.run, cli.json_path, cli.show_worst, cli.run_area);
+  return run_command(cli.run, cli.json_path, cli.show_worst, cli.run_area, cli.dump_path);
 }
 
 // What was printed must have reached stdout: a full disk or a closed file is

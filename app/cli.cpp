@@ -13,6 +13,9 @@ std::unique_ptr<Cli> make_cli() {
   add_common(cli->run_command, cli->run);
   cli->run_command->add_option("--json", cli->json_path, "also write the results as JSON to this file");
   cli->run_command->add_flag("--worst", cli->show_worst, "print each design's worst pixel");
+  cli->run_command->add_option("--dump", cli->dump_path,
+                               "write every fragment of the first design as CSV: triangle, x, y, u, v, "
+                               "the exact u and v, flags (docs/scenes.md)");
   cli->run_command->add_flag("--area", cli->run_area,
                              "also synthesise each design at these widths (cdsim area, cached; "
                              "all cores) and report its area");

@@ -25,6 +25,7 @@ struct Cli {
   CommonOptions run, bench, widths;
   std::string json_path;       // run --json
   bool show_worst = false;     // run --worst
+  std::string dump_path;       // run --dump
   bool run_area = false;       // run --area
   double bench_seconds = 1.0;  // bench --seconds
   std::string sv_path;         // widths --sv

@@ -31,7 +31,7 @@ PixelError pixel_error(const Fragment& f, const ExactSample& exact, int out_frac
 }
 
 DesignResult evaluate(const PreparedScene& prepared, const Design& design, const Widths& widths,
-                      bool measure_error) {
+                      bool measure_error, const FragmentVisitor* visit) {
   const Scene& scene = prepared.scene;
   ScanUnit unit(design, widths, scene.width, scene.height);
   DesignResult result;
@@ -66,13 +66,14 @@ DesignResult evaluate(const PreparedScene& prepared, const Design& design, const
     if (!measure_error || fragments.empty()) continue;
     const ExactReference exact(scene.triangles[i], prepared.unit[i], widths.subpixel_bits);
     for (const Fragment& f : fragments) {
-      const PixelError e = pixel_error(f, exact.at_pixel(f.x, f.y), widths.out_frac);
+      const ExactSample at = exact.at_pixel(f.x, f.y);
+      if (visit) (*visit)(static_cast<int64_t>(i), f, at);
+      const PixelError e = pixel_error(f, at, widths.out_frac);
       errors.push_back(static_cast<float>(e.texels));
       sum += e.texels;
       sum_squares += e.texels * e.texels;
       if (e.texels > result.worst.error) {
-        const ExactSample x = exact.at_pixel(f.x, f.y);
-        result.worst = {static_cast<int64_t>(i), f, double(x.u), double(x.v), e.texels};
+        result.worst = {static_cast<int64_t>(i), f, double(at.u), double(at.v), e.texels};
       }
       result.error.max = std::max(result.error.max, e.texels);
       result.error.footprint_max = std::max(result.error.footprint_max, e.footprint);

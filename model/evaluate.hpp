@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -49,13 +50,17 @@ struct DesignResult {
 };
 
 // Per-pixel error of one fragment against the exact reference.
+struct ExactSample;
 struct PixelError {
   double texels = 0, footprint = 0;
   bool texel_mismatch = false;
 };
 PixelError pixel_error(const Fragment& fragment, const struct ExactSample& exact, int out_frac);
 
+// Called for every fragment whose error is measured, with its triangle's index.
+using FragmentVisitor = std::function<void(int64_t triangle, const Fragment&, const ExactSample&)>;
+
 DesignResult evaluate(const PreparedScene& scene, const Design& design, const Widths& widths,
-                      bool measure_error = true);
+                      bool measure_error = true, const FragmentVisitor* visit = nullptr);
 
 }  // namespace cdsim
