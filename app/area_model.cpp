@@ -244,6 +244,25 @@ std::string rtl_sources_hash() {
   return fmt::format("{:016x}", hash);
 }
 
+std::string default_area_archive_path() { return (fs::path(kRtlDir) / "area_calibration.json").string(); }
+
+nlohmann::json load_area_archive(const std::string& path) {
+  if (!fs::exists(path)) return nlohmann::json::object();
+  try {
+    const nlohmann::json j = nlohmann::json::parse(read_text_file(path));
+    if (j.at("flow").get<std::string>() != kCoarseFlow) {
+      std::cerr << fmt::format("area-model: {} is for flow {}, this build uses {}; not reused\n", path,
+                               j.at("flow").get<std::string>(), kCoarseFlow);
+      return nlohmann::json::object();
+    }
+    const nlohmann::json& configs = j.at("configurations");
+    if (!configs.is_object()) throw std::runtime_error("'configurations' is not an object");
+    return configs;
+  } catch (const std::exception& e) {
+    throw std::runtime_error(fmt::format("{}: not a usable calibration archive: {}", path, e.what()));
+  }
+}
+
 AreaModel load_area_model(const std::string& path) {
   if (!fs::exists(path))
     throw std::runtime_error(fmt::format("{}: no area model; make one with cdsim area-model", path));
@@ -390,6 +409,14 @@ CLI::App* add_area_model_command(CLI::App& app, AreaModelOptions& options) {
       ->check(CLI::Range(1u, 256u));
   cmd->add_option("--write", options.write_path, "write the model here (default: rtl/area_model.json)");
   cmd->add_option("--json", options.json_path, "also write the per-configuration errors as JSON");
+  cmd->add_option("--archive", options.archive_path,
+                  "syntheses and elaborations of earlier calibrations, reused and extended "
+                  "(default: rtl/area_calibration.json)");
+  cmd->add_flag("--no-archive", options.no_archive, "neither read nor write an archive")
+      ->excludes("--archive");
+  cmd->add_flag("--archive-only", options.archive_only,
+                "fail rather than synthesise a configuration the archive lacks")
+      ->excludes("--no-archive");
   cmd->add_option("--cache", options.area.cache_dir, "cache folder (as cdsim area --cache)");
   cmd->add_option("--liberty", options.area.liberty, "standard-cell liberty file")->capture_default_str();
   return cmd;
@@ -413,45 +440,87 @@ int run_area_model_command(const AreaModelOptions& options) {
              options.configs, options.seed, kBuildRevision);
   std::fflush(stdout);
 
-  // Full syntheses (cached), then the elaborations the model reads.
+  // What an earlier calibration recorded (the archive) is reused: its key is
+  // the configuration's cache key, which covers the RTL, widths, design and flow.
   AreaOptions area = options.area;
   area.estimate = false;
   area.quiet = true;
+  const std::string archive_path =
+      options.archive_path.empty() ? default_area_archive_path() : options.archive_path;
+  if (!options.no_archive) check_output_folder("--archive", archive_path);
+  const nlohmann::json archive = options.no_archive ? nlohmann::json::object() : load_area_archive(archive_path);
+  std::vector<std::string> keys(configs.size());
+  std::vector<size_t> pending;
+  std::vector<std::map<std::string, double>> unit_own(configs.size()), table_own(configs.size());
+  for (size_t i = 0; i < configs.size(); ++i) {
+    keys[i] = prepare_unit(configs[i].design, configs[i].widths, area).dir.filename().string();
+    if (archive.contains(keys[i])) {
+      const nlohmann::json& a = archive.at(keys[i]);
+      configs[i].coarse.unit = inventory_of(a.at("inventory").at("unit"));
+      configs[i].coarse.table = inventory_of(a.at("inventory").at("table"));
+      configs[i].logic = a.at("logic_area_um2").get<double>();
+      configs[i].table = a.at("flop_table_area_um2").get<double>();
+      unit_own[i] = a.at("own_area").at("unit").get<std::map<std::string, double>>();
+      table_own[i] = a.at("own_area").at("table").get<std::map<std::string, double>>();
+    } else {
+      pending.push_back(i);
+    }
+  }
+  fmt::print("{} of {} configurations from {}{}\n", configs.size() - pending.size(), configs.size(),
+             options.no_archive ? "an archive (none given)" : archive_path,
+             pending.empty() ? "" : "; the others are synthesised and elaborated");
+  std::fflush(stdout);
+  if (!pending.empty() && options.archive_only) {
+    std::string missing;
+    for (size_t k = 0; k < std::min<size_t>(pending.size(), 5); ++k)
+      missing += fmt::format("\n  {} {}", configs[pending[k]].design.name, describe(configs[pending[k]].widths));
+    throw std::runtime_error(fmt::format("area-model --archive-only: {} of {} configurations are not in {}, "
+                                         "for example:{}",
+                                         pending.size(), configs.size(), archive_path, missing));
+  }
+
+  // Full syntheses (cached), then the elaborations the model reads.
   std::vector<AreaJob> jobs;
-  for (const CalibrationConfig& c : configs) jobs.push_back({c.design, c.widths});
+  for (size_t i : pending) jobs.push_back({configs[i].design, configs[i].widths});
   const std::vector<AreaReport> synthesised = synthesise_areas(jobs, area, options.jobs);
-  std::vector<std::map<std::string, ModuleStat>> unit_stats(configs.size()), table_stats(configs.size());
-  run_parallel(configs.size(), options.jobs, "area-model", "elaborations (Yosys, cached)", [&](size_t i) {
+  const auto own_areas = [](const std::map<std::string, ModuleStat>& stat) {
+    std::map<std::string, double> out;
+    for (const auto& [name, m] : stat) out[name] = m.own_area;
+    return out;
+  };
+  run_parallel(pending.size(), options.jobs, "area-model", "elaborations (Yosys, cached)", [&](size_t k) {
+    const size_t i = pending[k];
     const UnitConfig u = prepare_unit(configs[i].design, configs[i].widths, area);
     configs[i].coarse = coarse_pass(u);
-    unit_stats[i] = parse_stat(read_text_file(u.dir / "unit.log"));
-    if (u.has_table) table_stats[i] = parse_stat(read_text_file(u.dir / "table.log"));
+    configs[i].logic = synthesised[k].logic_area_um2;
+    unit_own[i] = own_areas(parse_stat(read_text_file(u.dir / "unit.log")));
+    if (u.has_table) {
+      const auto table = parse_stat(read_text_file(u.dir / "table.log"));
+      configs[i].table = table_area(table);
+      table_own[i] = own_areas(table);
+    }
   });
 
   // Samples: every distinct module with its synthesised own area.
   std::vector<AreaSample> samples;
   std::set<std::string> sampled;
-  const auto collect = [&](size_t i, const Inventory& inv, const std::map<std::string, ModuleStat>& stat,
+  const auto collect = [&](size_t i, const Inventory& inv, const std::map<std::string, double>& own,
                            const std::string& what) {
     for (const auto& [name, m] : inv) {
-      const auto it = stat.find(name);
-      if (it == stat.end())
+      const auto it = own.find(name);
+      if (it == own.end())
         throw std::runtime_error(fmt::format("area model: module {} of the {} elaborated but not in the "
                                              "synthesis statistics",
                                              name, what));
       // One sample per module and configuration: a module's name encodes its
       // parameters but not the widths it reads from cd_widths.svh.
       if (sampled.insert(fmt::format("{} #{}", name, i)).second)
-        samples.push_back({m.kind, m.features, it->second.own_area, i});
+        samples.push_back({m.kind, m.features, it->second, i});
     }
   };
   for (size_t i = 0; i < configs.size(); ++i) {
-    configs[i].logic = synthesised[i].logic_area_um2;
-    collect(i, configs[i].coarse.unit, unit_stats[i], "unit");
-    if (!configs[i].coarse.table.empty()) {
-      configs[i].table = table_area(table_stats[i]);
-      collect(i, configs[i].coarse.table, table_stats[i], "flip-flop table");
-    }
+    collect(i, configs[i].coarse.unit, unit_own[i], "unit");
+    if (!configs[i].coarse.table.empty()) collect(i, configs[i].coarse.table, table_own[i], "flip-flop table");
   }
 
   // Each configuration predicted by a fit that has seen none of its modules.
@@ -541,6 +610,24 @@ int run_area_model_command(const AreaModelOptions& options) {
   write_file_atomic(write_path, model.dump(1) + "\n");
   fmt::print("\nwrote {} ({} module kinds, {} module samples)\n", write_path, coefficients.size(),
              samples.size());
+  if (!options.no_archive && !pending.empty()) {
+    // Every configuration of this calibration, and those of earlier ones on the same RTL.
+    nlohmann::json updated = nlohmann::json::object();
+    const std::string rtl = rtl_sources_hash();
+    for (const auto& [key, a] : archive.items())
+      if (a.value("rtl_hash", "") == rtl) updated[key] = a;
+    for (size_t i = 0; i < configs.size(); ++i)
+      updated[keys[i]] = {{"design", configs[i].design.name},
+                          {"widths", describe(configs[i].widths)},
+                          {"rtl_hash", rtl},
+                          {"logic_area_um2", configs[i].logic},
+                          {"flop_table_area_um2", configs[i].table},
+                          {"own_area", {{"unit", unit_own[i]}, {"table", table_own[i]}}},
+                          {"inventory", {{"unit", inventory_json(configs[i].coarse.unit)},
+                                         {"table", inventory_json(configs[i].coarse.table)}}}};
+    write_file_atomic(archive_path, nlohmann::json{{"flow", kCoarseFlow}, {"configurations", updated}}.dump() + "\n");
+    fmt::print("wrote {} ({} configurations)\n", archive_path, updated.size());
+  }
   if (!options.json_path.empty()) {
     write_file_atomic(options.json_path, model.at("calibration").dump(2) + "\n");
     fmt::print("wrote {}\n", options.json_path);

@@ -46,6 +46,12 @@ struct AreaModel {
 AreaModel load_area_model(const std::string& path);
 std::string default_area_model_path();
 std::string rtl_sources_hash();
+// The calibration archive (default: rtl/area_calibration.json): per
+// configuration key, its synthesised areas and elaborated inventory, so that a
+// calibration need not synthesise again what an earlier one did. Empty when the
+// file is missing or for another flow; throws naming the file when malformed.
+nlohmann::json load_area_archive(const std::string& path);
+std::string default_area_archive_path();
 
 // The unit's area by the model, cached like a synthesis. Throws when the model
 // has no coefficients for a module kind the design holds.
@@ -78,6 +84,9 @@ struct AreaModelOptions {
   unsigned jobs = 0;
   std::string write_path;  // default: rtl/area_model.json
   std::string json_path;
+  std::string archive_path;  // default: rtl/area_calibration.json
+  bool no_archive = false;
+  bool archive_only = false;
   AreaOptions area;
 };
 
