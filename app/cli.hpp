@@ -30,6 +30,7 @@ struct Cli {
   double bench_seconds = 1.0;  // bench --seconds
   std::string sv_path;         // widths --sv
   rtl::RegressOptions regress;
+  rtl::CoverageOptions coverage;
   SweepOptions sweep;
   MergeOptions merge;
   RenderOptions render;
@@ -42,7 +43,7 @@ struct Cli {
            *regress_command = nullptr, *sweep_command = nullptr, *designs_command = nullptr,
            *hard_cases_command = nullptr, *render_command = nullptr, *size_command = nullptr,
            *area_command = nullptr, *choose_command = nullptr, *area_model_command = nullptr,
-           *merge_command = nullptr;
+           *merge_command = nullptr, *coverage_command = nullptr;
 };
 
 // Builds the whole command line. The options refer into the Cli, which

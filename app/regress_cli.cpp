@@ -48,8 +48,25 @@ CLI::App* add_regress_command(CLI::App& app, RegressOptions& options) {
                   "I/N: run only the I-th of N shards (every N-th triangle from the I-th, each with "
                   "the back-pressure it has in the whole run); cdsim merge joins the summaries");
   cmd->add_option("--json", options.json_path, "also write the summary as JSON (what cdsim merge joins)");
+  cmd->add_option("--coverage", options.coverage_dir,
+                  "run a coverage build of the RTL (line, toggle and the cover points of "
+                  "sim/cover/cd_scan_cover.sv) and add this run's data to DIR, which then holds "
+                  "the merged coverage.info, coverage.json and an HTML report (docs/coverage.md)");
   cmd->add_option("--only", options.only, "run only triangle N of the source, from 0 (to chase a mismatch)")
       ->check(cli::integer_in(0, std::numeric_limits<int64_t>::max()));
+  return cmd;
+}
+
+CLI::App* add_coverage_command(CLI::App& app, CoverageOptions& options) {
+  CLI::App* cmd = app.add_subcommand(
+      "coverage",
+      "merge the coverage data that regress --coverage wrote into DIR (and more folders) and "
+      "report it: lcov .info, HTML, JSON and the figures; --min-lines fails below a line coverage");
+  cmd->add_option("dirs", options.dirs, "folders of coverage data (*.dat); the report goes to the first")
+      ->required();
+  cmd->add_option("--min-lines", options.min_lines,
+                  "exit 1 if the line coverage of rtl/ is below this percentage")
+      ->check(CLI::Range(0.0, 100.0));
   return cmd;
 }
 

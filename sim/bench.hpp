@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 #include <systemc.h>
 #include <verilated.h>
+#include <verilated_cov.h>
 #include <verilated_fst_sc.h>
 
 #include <chrono>
@@ -41,6 +42,7 @@ struct BenchOptions {
   uint64_t seed = 1;          // of the back-pressure (and named in every report)
   double backpressure = 0.0;  // probability that the fragment sink stalls a cycle
   std::string trace;          // FST waveform of the whole run, if not empty
+  std::string coverage;       // Verilator coverage data of the run, if not empty (a coverage build)
   // Per job: cycles without its record before a hang is reported
   // (regress.cpp, hang_cycle_limit: scaled by the model's cycles and the back-pressure).
   std::vector<int64_t> cycle_limits;
@@ -319,6 +321,7 @@ int run_bench(const std::vector<Job>& jobs, const Widths& widths, const BenchOpt
     trace->close();
     if (!options.trace.empty()) std::cout << fmt::format("waveform: {}\n", options.trace);
   }
+  if (!options.coverage.empty()) Verilated::threadContextp()->coveragep()->write(options.coverage.c_str());
   std::cout << scoreboard.flag_census() << '\n';
   std::cout << fmt::format("blocks compared: {} setups, {} table writes\n",
                            scoreboard.setups_compared(), scoreboard.writes_compared());

@@ -28,6 +28,7 @@
 #include "evaluate.hpp"
 #include "interrupt.hpp"
 #include "random_triangles.hpp"
+#include "rtl_coverage.hpp"
 #include "rtl_cache.hpp"
 #include "scene.hpp"
 #include "scoreboard.hpp"
@@ -233,7 +234,14 @@ int regress(const Widths* given) {
           ? int64_t{0}
           : *std::max_element(bench_options.cycle_limits.begin(), bench_options.cycle_limits.end()));
   std::cout.flush();
-  const RunBench run_custom = builtin.empty() ? load_custom_rtl(widths, options.rtl_cache) : nullptr;
+  // A coverage run takes a coverage build even at built-in widths.
+  const bool coverage = !options.coverage_dir.empty();
+  if (coverage) {
+    bench_options.coverage = coverage_data_path(options.coverage_dir, describe(widths), source, options.design,
+                                                options.backpressure, options.shard, options.only);
+  }
+  const RunBench run_custom =
+      builtin.empty() || coverage ? load_custom_rtl(widths, options.rtl_cache, coverage) : nullptr;
   InterruptWatch watch("interrupt_watch");
   int status = 0;
   if (run_custom) status = run_custom(&jobs, &widths, &bench_options);
@@ -243,6 +251,10 @@ int regress(const Widths* given) {
   throw_if_interrupted();
   if (!options.trace.empty() && !std::filesystem::exists(options.trace))
     throw std::runtime_error(fmt::format("--trace {}: the waveform was not written", options.trace));
+  if (coverage) {
+    std::cout << fmt::format("coverage data: {}\n", bench_options.coverage);
+    report_coverage(options.coverage_dir);
+  }
   if (!options.json_path.empty()) {
     nlohmann::json flags = nlohmann::json::object();
     for (const auto& [name, count] : summary.flags) flags[name] = count;

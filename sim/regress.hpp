@@ -30,11 +30,20 @@ struct RegressOptions {
   bool scene_and_random = false;      // the scene, then `random` triangles (size --verify)
   std::string shard;                  // "I/N": every N-th triangle from the I-th (cdsim merge joins them)
   std::string json_path;              // the summary as JSON
+  std::string coverage_dir;           // coverage data and report (regress --coverage)
 };
 
 // Registers the `regress` subcommand and its options on app
 // (app/regress_cli.cpp: the command line needs no SystemC).
 CLI::App* add_regress_command(CLI::App& app, RegressOptions& options);
+
+// `cdsim coverage DIR...` (sim/rtl_coverage.cpp).
+struct CoverageOptions {
+  std::vector<std::string> dirs;
+  double min_lines = 0;  // percent
+};
+CLI::App* add_coverage_command(CLI::App& app, CoverageOptions& options);
+int run_coverage_command(const CoverageOptions& options);
 // Runs it with the parsed options; returns the process exit code. Throws
 // Interrupted (interrupt.hpp) on SIGINT or SIGTERM.
 int run_regress_command(const RegressOptions& options);

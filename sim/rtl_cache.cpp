@@ -227,27 +227,42 @@ void remove_stale(const fs::path& dir, const std::string& prefix) {
 }
 
 // Verilator as verilate() in sim/CMakeLists.txt runs it for the built-in configurations.
-std::vector<std::string> verilator_command(const fs::path& verilated, const fs::path& header_dir) {
+std::vector<std::string> verilator_command(const fs::path& verilated, const fs::path& header_dir,
+                                           bool coverage) {
   std::vector<std::string> argv = {build::kVerilatorBin, "--compiler", build::kVerilatorCompiler,
                                    "--prefix", kPrefix, "--Mdir", verilated.string(),
                                    "--make", "cmake", "--top", build::kRtlTop, "--trace-fst", "--sc",
                                    "-y", header_dir.string(), "-y", kRtlDir};
   for (const std::string& a : strings(build::kVerilatorArgs)) argv.push_back(a);
   for (const std::string& s : strings(build::kRtlSources)) argv.push_back(s);
+  if (coverage) argv.insert(argv.end(), {"--coverage", build::kCoverSource});
   return argv;
 }
 
+// The model's compile flags; a coverage build defines VM_COVERAGE as verilate() would.
+std::vector<std::string> model_flags(bool coverage) {
+  std::vector<std::string> flags = strings(build::kModelFlags);
+  if (coverage)
+    for (std::string& f : flags)
+      if (f == "-DVM_COVERAGE=0") f = "-DVM_COVERAGE=1";
+  return flags;
+}
+
 // What the model key covers besides the header and the RTL.
-std::string model_recipe() {
-  return fmt::format(
+std::string model_recipe(bool coverage) {
+  std::string recipe = fmt::format(
       "verilator: {} {} --prefix {} --top {} --trace-fst --sc {} {}\ncompiler: {} ({})\nflags: {}\n",
       build::kVerilatorBin, build::kVerilatorVersion, kPrefix, build::kRtlTop,
       joined(strings(build::kVerilatorArgs)), joined(strings(build::kRtlSources)),
-      build::kCompiler, build::kCompilerVersion, joined(strings(build::kModelFlags)));
+      build::kCompiler, build::kCompilerVersion, joined(model_flags(coverage)));
+  if (coverage)
+    recipe += fmt::format("coverage: --coverage {} {}\n", build::kCoverSource,
+                          hex(fnv1a(read_text_file(build::kCoverSource))));
+  return recipe;
 }
 
 void build_model(const fs::path& root, const fs::path& model_dir, const std::string& header,
-                 const std::string& inputs) {
+                 const std::string& inputs, bool coverage) {
   const fs::path tmp = root / fmt::format("tmp-{}-{}", model_dir.filename().string(), getpid());
   fs::remove_all(tmp);
   fs::create_directories(tmp / "log");
@@ -255,12 +270,12 @@ void build_model(const fs::path& root, const fs::path& model_dir, const std::str
   write_file_atomic(tmp / "cd_widths.svh", header);
   write_file_atomic(tmp / "inputs.txt", inputs);
   const auto start = std::chrono::steady_clock::now();
-  run_steps({{verilator_command(tmp / "verilated", tmp), tmp / "log/verilator.log", "Verilator"}}, 1);
+  run_steps({{verilator_command(tmp / "verilated", tmp, coverage), tmp / "log/verilator.log", "Verilator"}}, 1);
   std::vector<Step> compiles;
   for (const fs::path& source : files_in(tmp / "verilated", ".cpp")) {
     const std::string name = source.stem().string();
     std::vector<std::string> argv = {build::kCompiler};
-    for (const std::string& f : strings(build::kModelFlags)) argv.push_back(f);
+    for (const std::string& f : model_flags(coverage)) argv.push_back(f);
     argv.insert(argv.end(), {"-I" + (tmp / "verilated").string(), "-c", source.string(), "-o",
                              (tmp / "obj" / (name + ".o")).string()});
     compiles.push_back(
@@ -342,12 +357,16 @@ RunBench open_bench(const fs::path& library) {
 
 std::string default_rtl_cache_dir() { return cache_root("rtl").string(); }
 
-RunBench load_custom_rtl(const Widths& widths, const std::string& cache_dir) {
+void run_tool(const std::vector<std::string>& argv, const std::string& log, const std::string& what) {
+  run_steps({{argv, log, what}}, 1);
+}
+
+RunBench load_custom_rtl(const Widths& widths, const std::string& cache_dir, bool coverage) {
   const std::string header = rtl_header(widths, "custom");
   const fs::path root = fs::absolute(cache_dir.empty() ? default_rtl_cache_dir() : cache_dir);
   fs::create_directories(root);
 
-  std::string inputs = fmt::format("widths: {}\n{}", describe(widths), model_recipe());
+  std::string inputs = fmt::format("widths: {}\n{}", describe(widths), model_recipe(coverage));
   uint64_t model_key = fnv1a(kCacheVersion);
   model_key = fnv1a(header, model_key);
   for (const fs::path& sv : files_in(kRtlDir, ".sv")) {
@@ -370,10 +389,10 @@ RunBench load_custom_rtl(const Widths& widths, const std::string& cache_dir) {
   if (!fs::exists(model_dir)) {
     remove_stale(root, "tmp-");
     std::cout << fmt::format(
-        "regress: building the RTL for widths {} in {} (first use; about {:.0f} s)\n",
-        describe(widths), model_dir.string(), timings.model + timings.bench);
+        "regress: building the RTL{} for widths {} in {} (first use; about {:.0f} s)\n",
+        coverage ? " with coverage" : "", describe(widths), model_dir.string(), timings.model + timings.bench);
     std::cout.flush();
-    build_model(root, model_dir, header, inputs);
+    build_model(root, model_dir, header, inputs, coverage);
     timings.model = seconds_since(start);
     const auto bench_start = std::chrono::steady_clock::now();
     build_bench(model_dir, library);

@@ -22,7 +22,13 @@ using RunBench = int (*)(const std::vector<Job>* jobs, const Widths* widths,
 // (empty: default_rtl_cache_dir()) on first use, saying what it does; later
 // calls reuse it. Throws std::runtime_error naming the log when Verilator or
 // the compiler fails.
-RunBench load_custom_rtl(const Widths& widths, const std::string& cache_dir);
+// With `coverage`, the model is verilated with --coverage (line, toggle and
+// the user cover points of sim/cover/cd_scan_cover.sv), cached apart.
+RunBench load_custom_rtl(const Widths& widths, const std::string& cache_dir, bool coverage = false);
+
+// Runs one tool (argv[0] looked up on PATH), its output to `log`; throws
+// naming `what`, the exit status and the log's first lines when it fails.
+void run_tool(const std::vector<std::string>& argv, const std::string& log, const std::string& what);
 
 // $XDG_CACHE_HOME/cdsim/rtl, else ~/.cache/cdsim/rtl.
 std::string default_rtl_cache_dir();

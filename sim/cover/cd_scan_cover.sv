@@ -1,0 +1,74 @@
+// User cover points of cd_scan_unit for `cdsim regress --coverage`, bound into
+// the unit by the `bind` at the end (verification collateral: rtl/ holds none
+// of it, so synthesis and the area caches never see it). Each point is named
+// c_<what> and counts the clock edges at which it holds; docs/coverage.md lists
+// them and what the CI regression set leaves uncovered.
+`include "cd_widths.svh"
+
+module cd_scan_cover (
+  input logic       clk_i,
+  input logic       rst_ni,
+  input logic [2:0] state_q,
+  input logic [1:0] kind_q,
+  input logic [2:0] segment_log2_q,
+  input logic       kim_pipelined_q,
+  input logic [1:0] density_log2_q,
+  input logic       correction_q,
+  input logic       frag_valid_o,
+  input logic       frag_ready_i,
+  input logic       rec_valid_o,
+  input logic       rec_ready_i,  // always 1 in the bench: a record is taken when valid
+  /* verilator lint_off UNUSEDSIGNAL */  // the flags above CD_FLAG_COUNT, the spare setup bits
+  input logic [7:0] rec_flags_o,
+  input logic       obs_setup_valid_o,
+  input logic [7:0] obs_setup_bits_o
+  /* verilator lint_on UNUSEDSIGNAL */
+);
+  // The unit's states (cd_scan_unit.sv, StIdle .. StDrain).
+  c_state_idle:   cover property (@(posedge clk_i) rst_ni && state_q == 3'd0);
+  c_state_setup:  cover property (@(posedge clk_i) rst_ni && state_q == 3'd1);
+  c_state_fill:   cover property (@(posedge clk_i) rst_ni && state_q == 3'd2);
+  c_state_column: cover property (@(posedge clk_i) rst_ni && state_q == 3'd3);
+  c_state_pixel:  cover property (@(posedge clk_i) rst_ni && state_q == 3'd4);
+  c_state_scan:   cover property (@(posedge clk_i) rst_ni && state_q == 3'd5);
+  c_state_record: cover property (@(posedge clk_i) rst_ni && state_q == 3'd6);
+  c_state_drain:  cover property (@(posedge clk_i) rst_ni && state_q == 3'd7);
+
+  // Back-pressure: a fragment held by the sink (the bench never holds a record).
+  c_fragment_stall: cover property (@(posedge clk_i) rst_ni && frag_valid_o && !frag_ready_i);
+
+  // Triangles finished with each flag (model/flags.hpp): a band refill sets
+  // banded; the saturations are those of the table and of the output.
+  wire record = rst_ni && rec_valid_o && rec_ready_i;
+  c_flag_table_saturated:    cover property (@(posedge clk_i) record && rec_flags_o[`CD_FLAG_TABLE_SATURATED]);
+  c_flag_output_saturated:   cover property (@(posedge clk_i) record && rec_flags_o[`CD_FLAG_OUTPUT_SATURATED]);
+  c_flag_depth_range:        cover property (@(posedge clk_i) record && rec_flags_o[`CD_FLAG_DEPTH_RANGE]);
+  c_flag_banded:             cover property (@(posedge clk_i) record && rec_flags_o[`CD_FLAG_BANDED]);
+  c_flag_neighbour_dropped:  cover property (@(posedge clk_i) record && rec_flags_o[`CD_FLAG_NEIGHBOUR_DROPPED]);
+
+  // Both scan orientations, and empty and line-less triangles.
+  wire setup = rst_ni && obs_setup_valid_o;
+  c_x_major:  cover property (@(posedge clk_i) setup && !obs_setup_bits_o[0] && obs_setup_bits_o[1]);
+  c_y_major:  cover property (@(posedge clk_i) setup && !obs_setup_bits_o[0] && !obs_setup_bits_o[1]);
+  c_empty:    cover property (@(posedge clk_i) setup && obs_setup_bits_o[0]);
+  c_no_lines: cover property (@(posedge clk_i) setup && !obs_setup_bits_o[0] && obs_setup_bits_o[2]);
+
+  // A triangle of every design finished (model/design.cpp's kind and options).
+  wire cd = record && kind_q == 2'd0;
+  c_design_cd_none:          cover property (@(posedge clk_i) cd && density_log2_q == 2'd0 && !correction_q);
+  c_design_cd_linear:        cover property (@(posedge clk_i) cd && density_log2_q == 2'd0 && correction_q);
+  c_design_cd_dense2:        cover property (@(posedge clk_i) cd && density_log2_q == 2'd1 && !correction_q);
+  c_design_cd_dense4:        cover property (@(posedge clk_i) cd && density_log2_q == 2'd2 && !correction_q);
+  c_design_cd_dense2_linear: cover property (@(posedge clk_i) cd && density_log2_q == 2'd1 && correction_q);
+  c_design_divide:           cover property (@(posedge clk_i) record && kind_q == 2'd1);
+  c_design_kim_iter:         cover property (@(posedge clk_i) record && kind_q == 2'd2 && !kim_pipelined_q);
+  c_design_kim_pipe:         cover property (@(posedge clk_i) record && kind_q == 2'd2 && kim_pipelined_q);
+  c_design_affine_sub16:     cover property (@(posedge clk_i) record && kind_q == 2'd3 && segment_log2_q == 3'd4);
+  c_design_affine_sub8:      cover property (@(posedge clk_i) record && kind_q == 2'd3 && segment_log2_q == 3'd3);
+  c_design_affine:           cover property (@(posedge clk_i) record && kind_q == 2'd3 && segment_log2_q == 3'd0);
+endmodule
+
+bind cd_scan_unit cd_scan_cover u_cover (
+  .clk_i, .rst_ni, .state_q, .kind_q, .segment_log2_q, .kim_pipelined_q, .density_log2_q,
+  .correction_q, .frag_valid_o, .frag_ready_i, .rec_valid_o, .rec_ready_i, .rec_flags_o,
+  .obs_setup_valid_o, .obs_setup_bits_o);

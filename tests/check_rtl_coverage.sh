@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# RTL coverage over the CI coverage set (docs/coverage.md): narrow widths on
+# random triangles of the nine fast designs and on the hard cases with all
+# eleven designs mixed, with back-pressure, each run adding its data to one
+# folder.
+# Fails if the line coverage of rtl/ is below MIN_LINES percent, if a design's
+# or an FSM state's cover point is never hit, or if the lcov and HTML reports
+# are missing; and checks that `cdsim coverage` refuses a folder without data.
+# SCALE (default 1) multiplies the random triangles; above 1 (scripts/test
+# --long) default and wide widths and the default scene are added.
+# Usage: check_rtl_coverage.sh CDSIM WORKDIR RTL_CACHE MIN_LINES [SCALE]
+set -euo pipefail
+cdsim=$1 work=$2 cache=$3 min_lines=$4 scale=${5:-1}
+rm -rf "$work" && mkdir -p "$work/empty"
+fast=cd-none,cd-linear,cd-dense2,cd-dense4,cd-dense2-linear,divide,affine-sub16,affine-sub8,affine
+run() { "$cdsim" regress --backpressure 0.3 --rtl-cache "$cache" --coverage "$work/cov" "$@" \
+          > "$work/run.log" 2>&1 || { cat "$work/run.log"; echo "FAIL regress $*"; exit 1; }
+        echo "regress $*:"; grep -E "mismatches|^  (line|branch|toggle|user) " "$work/run.log"; }
+run --widths narrow --random $((300 * scale)) --seed 3 --design $fast
+run --widths narrow --scene hard:all --design mix
+runs=2
+if ((scale > 1)); then
+  # The Kim designs cost tens of thousands of cycles a random triangle: fewer of them.
+  run --widths narrow --random $((2 * scale)) --seed 4 --design kim-iter,kim-pipe
+  run --widths default --random $((30 * scale)) --seed 5 --design $fast
+  run --widths wide --random $((10 * scale)) --seed 6 --design $fast
+  run --widths narrow --scene default --design mix
+  runs=6
+fi
+"$cdsim" coverage "$work/cov" --min-lines "$min_lines"
+
+if "$cdsim" coverage "$work/empty" > "$work/empty.log" 2>&1; then echo "FAIL coverage accepted a folder without data"; exit 1; fi
+grep -q "no coverage data" "$work/empty.log" || { cat "$work/empty.log"; echo "FAIL no message"; exit 1; }
+
+/usr/bin/python3 - "$work/cov" "$runs" <<'PY'
+import json, os, sys
+d, runs = sys.argv[1], int(sys.argv[2])
+cov = json.load(open(f"{d}/coverage.json"))
+failures = []
+def expect(cond, what):
+    print(("ok   " if cond else "FAIL ") + what)
+    if not cond: failures.append(what)
+expect(cov["runs"] == runs, f"{runs} runs merged")
+uncovered = {u["point"] for u in cov["uncovered"] if u["type"] == "user"}
+for p in ["c_state_" + s for s in ("idle", "setup", "fill", "column", "pixel", "scan", "record", "drain")] + \
+         ["c_design_" + s for s in ("cd_none", "cd_linear", "cd_dense2", "cd_dense4", "cd_dense2_linear", "divide",
+                                    "kim_iter", "kim_pipe", "affine_sub16", "affine_sub8", "affine")] + \
+         ["c_fragment_stall", "c_flag_banded", "c_flag_table_saturated", "c_flag_output_saturated",
+          "c_x_major", "c_y_major"]:
+    expect(p not in uncovered, f"cover point {p} hit")
+expect(cov["rtl"]["toggle"]["total"] > 0, "toggle points counted")
+info = open(f"{d}/coverage.info").read()
+expect("SF:" in info and "/rtl/cd_scan_unit.sv" in info, "lcov .info names the RTL sources")
+expect(os.path.exists(f"{d}/html/index.html"), "genhtml report")
+sys.exit(1 if failures else 0)
+PY
