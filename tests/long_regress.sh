@@ -14,8 +14,8 @@ export SYSTEMC_DISABLE_COPYRIGHT_MESSAGE=1
 # --halt never: every shard runs to its end, so a mismatch in one does not hide the others' figures.
 parallel --halt never --jobs "$shards" --line-buffer --tagstring 'shard {}' \
   "$cdsim" regress --random "$triangles" --seed "$seed" --design "$designs" --backpressure 0.3 "$@" \
-  --shard {}/"$shards" --json "$work/shard{}.json" '>' "$work/shard{}.log" '2>&1' ::: $(seq 0 $((shards - 1))) || true
-for i in $(seq 0 $((shards - 1))); do
+  --shard {}/"$shards" --json "$work/shard{}.json" '>' "$work/shard{}.log" '2>&1' ::: $(seq 1 "$shards") || true
+for i in $(seq 1 "$shards"); do
   [[ -s $work/shard$i.json ]] || { echo "FAIL shard $i wrote no summary:"; tail -20 "$work/shard$i.log"; exit 1; }
 done
 status=0
