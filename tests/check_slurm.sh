@@ -1,17 +1,23 @@
 #!/usr/bin/env bash
 # A sweep through Slurm: a private single-node Slurm (Debian's slurm-wlm and
-# munge, started in WORKDIR on free ports, as root) runs scripts/slurm-sweep's
+# munge, started on free ports, as root) runs scripts/slurm-sweep's
 # job array of 3 shards and its dependent merge, whose files must be byte for
 # byte those of the unsharded sweep. The daemons stop when the test ends.
 # Usage: check_slurm.sh CDSIM WORKDIR SCENE
 set -euo pipefail
 cdsim=$(realpath "$1") work=$2 scene=$(realpath "$3")
 root=$(realpath "$(dirname "$0")/..")
-rm -rf "$work" && mkdir -p "$work/slurm/state" "$work/slurm/spool" && work=$(realpath "$work")
-s=$work/slurm
+rm -rf "$work" && mkdir -p "$work" && work=$(realpath "$work")
+# The daemons' folder is under /tmp, not WORKDIR: munged refuses a socket below
+# a folder that not everyone may enter (a build tree under mktemp -d is 0700).
+s=$(mktemp -d /tmp/cdsim-slurm.XXXXXX) && chmod 755 "$s" && mkdir -p "$s/state" "$s/spool"
+ln -sfn "$s" "$work/slurm"  # the daemons' logs, for a failed run
 stop() {
+  local status=$?
   SLURM_CONF=$s/slurm.conf scontrol shutdown > /dev/null 2>&1 || true
   for p in slurmd slurmctld munged; do [[ -f $s/$p.pid ]] && kill "$(cat "$s/$p.pid")" 2> /dev/null || true; done
+  sleep 1
+  ((status != 0)) || rm -rf "$s"  # kept, with the daemons' logs, after a failure
 }
 trap stop EXIT
 start=$(date +%s)
