@@ -58,10 +58,16 @@ std::map<std::string, std::string> point_fields(const std::string& text, const s
   return fields;
 }
 
-bool under(const std::string& file, const std::string& dir) {
-  const std::string d = fs::weakly_canonical(dir).string() + "/";
+// Whether `file` lies in rtl/ ("rtl") or in sim/cover ("cover"), else "";
+// resolved once per file, not once per point.
+std::string where_of(const std::string& file) {
+  static const std::string rtl = fs::weakly_canonical(kRtlDir).string() + "/";
+  static const std::string cover = fs::weakly_canonical(fs::path(build::kCoverSource).parent_path()).string() + "/";
+  static std::map<std::string, std::string> known;
+  const auto it = known.find(file);
+  if (it != known.end()) return it->second;
   const std::string f = fs::weakly_canonical(file).string();
-  return f.rfind(d, 0) == 0;
+  return known[file] = f.rfind(rtl, 0) == 0 ? "rtl" : f.rfind(cover, 0) == 0 ? "cover" : "";
 }
 
 }  // namespace
@@ -107,10 +113,9 @@ std::vector<CoveragePoint> read_coverage(const std::vector<std::string>& dat_fil
 
 std::map<std::string, CoverageFigures> coverage_figures(const std::vector<CoveragePoint>& points) {
   std::map<std::string, CoverageFigures> out;
-  const std::string cover_dir = fs::path(build::kCoverSource).parent_path().string();
   for (const CoveragePoint& p : points) {
-    const bool rtl = under(p.file, kRtlDir);
-    if (!(rtl || (p.type == "user" && under(p.file, cover_dir)))) continue;
+    const std::string where = where_of(p.file);
+    if (!(where == "rtl" || (p.type == "user" && where == "cover"))) continue;
     CoverageFigures& f = out[p.type];
     ++f.total;
     if (p.count > 0) ++f.covered;
@@ -156,9 +161,8 @@ std::map<std::string, CoverageFigures> report_coverage(const std::string& dir,
   nlohmann::json uncovered = nlohmann::json::array();
   for (const auto& [type, f] : figures)
     by_type[type] = {{"covered", f.covered}, {"total", f.total}, {"percent", f.percent()}};
-  const std::string cover_dir = fs::path(build::kCoverSource).parent_path().string();
   for (const CoveragePoint& p : points)
-    if (p.count == 0 && p.type != "toggle" && (under(p.file, kRtlDir) || under(p.file, cover_dir)))
+    if (p.count == 0 && p.type != "toggle" && !where_of(p.file).empty())
       uncovered.push_back({{"file", fs::path(p.file).filename().string()}, {"line", p.line},
                            {"type", p.type}, {"point", p.comment}});
   write_file_atomic(fs::path(dir) / "coverage.json",
