@@ -172,24 +172,16 @@ UnitConfig prepare_unit(const Design& design, const Widths& widths, const AreaOp
   // The unit elaborated with this design's hardware only (rtl/cd_scan_unit.sv).
   c.has_table = design.kind == Design::Kind::ConstantDepth;
   const bool has_divide = design.kind == Design::Kind::Divide;
-  const bool has_affine = design.kind == Design::Kind::Affine && design.subdivision == 0;
   const bool has_affine_sub = design.kind == Design::Kind::Affine && design.subdivision != 0;
-  const bool has_kim_iter = design.kind == Design::Kind::Kim && !design.pipelined;
-  const bool has_kim_pipe = design.kind == Design::Kind::Kim && design.pipelined;
-  const int segment_log2 = has_affine_sub ? log2_of(design.subdivision) : 4;
-  const int density_log2 = log2_of(design.density);
-  const int has_correction = design.correction ? 1 : 0;
   // The reciprocal, reported on its own, is the fill's (in the setup engine)
   // in the table designs, the pixels' (in pixel_divide) in divide and the end
   // points' in affine-subN.
   c.reciprocal_owner = c.has_table ? "setup_engine" : has_divide ? "pixel_divide"
                        : has_affine_sub ? "affine_sub_datapath" : "";
-  const std::string parameters = fmt::format(
-      "-set MaxDensityLog2 {} -set HasCorrection {} -set HasTable {:d} -set HasDivide {:d} "
-      "-set HasAffine {:d} -set HasAffineSub {:d} -set MaxSegmentLog2 {} -set HasKimIter {:d} "
-      "-set HasKimPipe {:d} -set HasObservation 0",
-      density_log2, has_correction, c.has_table, has_divide, has_affine, has_affine_sub,
-      segment_log2, has_kim_iter, has_kim_pipe);
+  std::string parameters;
+  for (const UnitParameter& p : unit_parameters({&design}))
+    parameters += fmt::format("-set {} {} ", p.name, p.value);
+  parameters += "-set HasObservation 0";
 
   // Every RTL source, in name order, so that the hash is stable.
   const fs::path rtl_dir = kRtlDir;
@@ -206,7 +198,7 @@ UnitConfig prepare_unit(const Design& design, const Widths& widths, const AreaOp
   const fs::path cache = options.cache_dir.empty() ? cache_root("area") : fs::path(options.cache_dir);
   c.dir = cache / fmt::format("{:016x}", hash);
   fs::create_directories(c.dir);
-  c.sram_depth = c.has_table ? int64_t{widths.table_depth} << density_log2 : 0;
+  c.sram_depth = c.has_table ? int64_t{widths.table_depth} << log2_of(design.density) : 0;
   c.word_bits = derived.word_bits;
   c.flop_lines = std::min<int64_t>(c.sram_depth, 64);  // 0: no table
 

@@ -155,6 +155,7 @@ int dispatch(Cli& cli) {
   if (*cli.widths_command) return widths_command(cli.widths, cli.sv_path);
   if (*cli.regress_command) return cdsim::rtl::run_regress_command(cli.regress);
   if (*cli.coverage_command) return cdsim::rtl::run_coverage_command(cli.coverage);
+  if (*cli.vectors_command) return cdsim::rtl::run_vectors_command(cli.vectors);
   if (*cli.sweep_command) return run_sweep_command(cli.sweep);
   if (*cli.merge_command) return run_merge_command(cli.merge);
   if (*cli.render_command) return run_render_command(cli.render);

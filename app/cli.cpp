@@ -36,6 +36,7 @@ std::unique_ptr<Cli> make_cli() {
 
   cli->regress_command = rtl::add_regress_command(app, cli->regress);
   cli->coverage_command = rtl::add_coverage_command(app, cli->coverage);
+  cli->vectors_command = rtl::add_vectors_command(app, cli->vectors);
   cli->sweep_command = add_sweep_command(app, cli->sweep);
   cli->merge_command = add_merge_command(app, cli->merge);
   cli->designs_command = app.add_subcommand("designs", "list the designs");

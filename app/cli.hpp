@@ -31,6 +31,7 @@ struct Cli {
   std::string sv_path;         // widths --sv
   rtl::RegressOptions regress;
   rtl::CoverageOptions coverage;
+  rtl::VectorsOptions vectors;
   SweepOptions sweep;
   MergeOptions merge;
   RenderOptions render;
@@ -43,7 +44,8 @@ struct Cli {
            *regress_command = nullptr, *sweep_command = nullptr, *designs_command = nullptr,
            *hard_cases_command = nullptr, *render_command = nullptr, *size_command = nullptr,
            *area_command = nullptr, *choose_command = nullptr, *area_model_command = nullptr,
-           *merge_command = nullptr, *coverage_command = nullptr;
+           *merge_command = nullptr, *coverage_command = nullptr,
+           *vectors_command = nullptr;
 };
 
 // Builds the whole command line. The options refer into the Cli, which

@@ -13,9 +13,11 @@ namespace cdsim::rtl {
 // More random triangles than this are refused: each job is held in memory.
 constexpr uint64_t kMaxRandomTriangles = 10'000'000;
 
-CLI::App* add_regress_command(CLI::App& app, RegressOptions& options) {
-  CLI::App* cmd = app.add_subcommand(
-      "regress", "run the SystemVerilog RTL (Verilator + SystemC) against the model, bit and cycle exact");
+namespace {
+
+// The options that say which triangles at which widths and designs: regress
+// and vectors take the same.
+void add_source_options(CLI::App* cmd, RegressOptions& options) {
   add_scene_options(cmd, options.scene, options.scene_options);
   CLI::Option* random =
       cmd->add_option("--random", options.random,
@@ -26,34 +28,63 @@ CLI::App* add_regress_command(CLI::App& app, RegressOptions& options) {
   cmd->add_option("--seed", options.seed, "seed of the random triangles and of the back-pressure")
       ->check(cli::unsigned_in(0, std::numeric_limits<uint64_t>::max()))
       ->capture_default_str();
-  cmd->add_option("--backpressure", options.backpressure,
-                  "probability that the fragment sink stalls a cycle")
-      ->check(cli::number_in(0.0, 0.95))
-      ->capture_default_str();
-  cmd->add_option("--trace", options.trace, "write an FST waveform of the whole run to this file");
   cmd->add_option("--widths", options.widths,
                   "width configuration: default, narrow or wide (the base that --set changes)")
       ->capture_default_str();
   cmd->add_option("--set", options.settings,
                   "NAME=VALUE: change a width or microarchitecture parameter (see 'cdsim widths'); "
-                  "repeatable, each parameter once. Widths no configuration has are verilated on "
-                  "first use and cached");
-  cmd->add_option("--rtl-cache", options.rtl_cache,
-                  "folder of the RTL verilated for --set widths (default $XDG_CACHE_HOME/cdsim/rtl "
-                  "or ~/.cache/cdsim/rtl)");
+                  "repeatable, each parameter once");
   cmd->add_option("--design", options.design,
                   "a design (see 'cdsim designs'), a comma-separated list, or mix (all eleven in turn)")
       ->capture_default_str();
+}
+
+}  // namespace
+
+CLI::App* add_regress_command(CLI::App& app, RegressOptions& options) {
+  CLI::App* cmd = app.add_subcommand(
+      "regress", "run the SystemVerilog RTL (Verilator + SystemC) against the model, bit and cycle exact");
+  add_source_options(cmd, options);
+  cmd->get_option("--set")->description(
+      "NAME=VALUE: change a width or microarchitecture parameter (see 'cdsim widths'); "
+      "repeatable, each parameter once. Widths no configuration has are verilated on "
+      "first use and cached");
+  cmd->add_option("--backpressure", options.backpressure,
+                  "probability that the fragment sink stalls a cycle")
+      ->check(cli::number_in(0.0, 0.95))
+      ->capture_default_str();
+  cmd->add_option("--trace", options.trace, "write an FST waveform of the whole run to this file");
+  cmd->add_option("--rtl-cache", options.rtl_cache,
+                  "folder of the RTL verilated for --set widths (default $XDG_CACHE_HOME/cdsim/rtl "
+                  "or ~/.cache/cdsim/rtl)");
   cmd->add_option("--shard", options.shard,
                   "I/N: run only the I-th of N shards (every N-th triangle from the I-th, each with "
                   "the back-pressure it has in the whole run); cdsim merge joins the summaries");
   cmd->add_option("--json", options.json_path, "also write the summary as JSON (what cdsim merge joins)");
-  cmd->add_option("--coverage", options.coverage_dir,
-                  "run a coverage build of the RTL (line, toggle and the cover points of "
-                  "sim/cover/cd_scan_cover.sv) and add this run's data to DIR, which then holds "
-                  "the merged coverage.info, coverage.json and an HTML report (docs/coverage.md)");
+  CLI::Option* coverage = cmd->add_option(
+      "--coverage", options.coverage_dir,
+      "run a coverage build of the RTL (line, branch, toggle and the cover points of "
+      "sim/cover/cd_scan_cover.sv) and add this run's data to DIR, which then holds "
+      "the merged coverage.info, coverage.json and an HTML report (docs/coverage.md)");
+  cmd->add_flag("--no-toggle{false}", options.coverage_toggle,
+                "with --coverage: leave out the toggle points (line, branch and cover points "
+                "only), for a coverage build that builds and runs several times faster")
+      ->needs(coverage);
   cmd->add_option("--only", options.only, "run only triangle N of the source, from 0 (to chase a mismatch)")
       ->check(cli::integer_in(0, std::numeric_limits<int64_t>::max()));
+  return cmd;
+}
+
+CLI::App* add_vectors_command(CLI::App& app, VectorsOptions& options) {
+  CLI::App* cmd = app.add_subcommand(
+      "vectors",
+      "write the model's expectations of each block (setup engine, table fill, fragments, "
+      "records) for the triangles as $readmemh files with a manifest, for a bench of your own "
+      "(tests/vectors/cd_scan_vectors_tb.sv replays them; docs/vectors.md)");
+  add_source_options(cmd, options.source);
+  cmd->get_option("--seed")->description("seed of the random triangles");
+  cmd->add_option("--out", options.out, "folder to write the vectors into (created; its files replaced)")
+      ->required();
   return cmd;
 }
 

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace cdsim {
@@ -41,6 +42,42 @@ std::string rtl_design_names() {
   for (const auto& d : all_designs())
     if (has_rtl(d)) names += (names.empty() ? "" : ", ") + d.name;
   return names;
+}
+
+std::vector<UnitParameter> unit_parameters(const std::vector<const Design*>& designs) {
+  const auto log2_of = [](int value) {
+    int bits = 0;
+    while ((1 << bits) < value) ++bits;
+    return bits;
+  };
+  int density_log2 = 0, segment_log2 = 0;
+  bool correction = false, table = false, divide = false, affine = false, affine_sub = false;
+  bool kim_iter = false, kim_pipe = false;
+  for (const Design* d : designs) {
+    switch (d->kind) {
+      case Design::Kind::ConstantDepth:
+        table = true;
+        density_log2 = std::max(density_log2, log2_of(d->density));
+        correction = correction || d->correction;
+        break;
+      case Design::Kind::Divide: divide = true; break;
+      case Design::Kind::Kim: (d->pipelined ? kim_pipe : kim_iter) = true; break;
+      case Design::Kind::Affine:
+        if (d->subdivision == 0) {
+          affine = true;
+        } else {
+          affine_sub = true;
+          segment_log2 = std::max(segment_log2, log2_of(d->subdivision));
+        }
+        break;
+    }
+  }
+  if (!affine_sub) segment_log2 = 4;  // the unit's default; nothing uses it
+  return {{"MaxDensityLog2", density_log2}, {"HasCorrection", correction},
+          {"HasTable", table},              {"HasDivide", divide},
+          {"HasAffine", affine},            {"HasAffineSub", affine_sub},
+          {"MaxSegmentLog2", segment_log2}, {"HasKimIter", kim_iter},
+          {"HasKimPipe", kim_pipe}};
 }
 
 const Design& find_design(const std::string& name) {

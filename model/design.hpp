@@ -29,6 +29,17 @@ const Design& find_design(const std::string& name);
 // "a,b,c" -> designs; empty text -> all.
 std::vector<Design> parse_design_list(const std::string& list);
 
+// The parameters of rtl/cd_scan_unit.sv that elaborate a unit holding exactly
+// the hardware these designs need: each one's datapath, a table as dense as
+// the densest needs, the longest affine segment. In the unit's order, without
+// HasObservation (synthesis turns it off, benches on). One design is what
+// `cdsim area` synthesises; several are what a vectors bench elaborates.
+struct UnitParameter {
+  const char* name;
+  int value;
+};
+std::vector<UnitParameter> unit_parameters(const std::vector<const Design*>& designs);
+
 // Sticky per-triangle flags; a fragment carries the subset raised by its own pixel.
 // Saturation is raised where a saturated value reaches an output: a table entry
 // that saturated but that no fragment uses changes nothing and raises nothing.

@@ -56,6 +56,8 @@ const WidthConfig kConfigs[] = {
 #undef X
 };
 
+}  // namespace
+
 Widths widths_of(const std::string& config) {
   for (const auto& c : kConfigs) {
     if (config != c.name) continue;
@@ -95,6 +97,8 @@ std::vector<const Design*> designs_for(const std::string& name) {
   }
   return out;
 }
+
+namespace {
 
 // add_regress_command: app/regress_cli.cpp.
 
@@ -148,6 +152,43 @@ void check_output_path(const std::string& option, const std::string& path) {
                                             folder.empty() ? "." : folder.string(), std::strerror(errno)));
 }
 
+}  // namespace
+
+std::vector<Job> source_jobs(const RegressOptions& o, const Widths& widths,
+                             const std::vector<const Design*>& designs, std::string& source) {
+  std::vector<Job> jobs;
+  if (o.random > 0 && !o.scene_and_random) {
+    jobs = random_jobs(o.random, o.seed, widths, designs);
+    source = fmt::format("{} random triangles (seed {})", o.random, o.seed);
+    std::cout << "source: " << source << '\n';
+  } else {
+    const PreparedScene scene = prepare(load_scene(o.scene, o.scene_options), widths);
+    for (size_t i = 0; i < scene.unit.size(); ++i) {
+      Job job;
+      job.triangle = scene.unit[i];
+      job.design = designs[i % designs.size()];
+      job.viewport_width = scene.scene.width;
+      job.viewport_height = scene.scene.height;
+      job.origin = fmt::format("scene {} triangle {}", scene.scene.name, i);
+      jobs.push_back(std::move(job));
+    }
+    source = fmt::format("scene {} ({} triangles, {}x{})", scene.scene.name, jobs.size(), scene.scene.width,
+                         scene.scene.height);
+    std::cout << "source: " << source << '\n';
+  }
+  if (o.random > 0 && o.scene_and_random) {
+    for (Job& job : random_jobs(o.random, o.seed, widths, designs))
+      jobs.push_back(std::move(job));
+    std::cout << fmt::format("source: then {} random triangles (seed {})\n", o.random,
+                             o.seed);
+    source += fmt::format(", then {} random triangles (seed {})", o.random, o.seed);
+  }
+  for (size_t i = 0; i < jobs.size(); ++i) jobs[i].number = i;
+  return jobs;
+}
+
+namespace {
+
 // The built-in configuration with exactly these widths, or "" if none.
 std::string builtin_config_of(const Widths& widths) {
   for (const auto& c : kConfigs)
@@ -172,35 +213,8 @@ int regress(const Widths* given) {
   if (exact && !builtin.empty()) label += fmt::format(" (= built-in '{}')", builtin);
   const std::vector<const Design*> designs = designs_for(options.design);
   std::cout << fmt::format("regress: seed {}\n", options.seed);
-  std::vector<Job> jobs;
   std::string source;
-  if (options.random > 0 && !options.scene_and_random) {
-    jobs = random_jobs(options.random, options.seed, widths, designs);
-    source = fmt::format("{} random triangles (seed {})", options.random, options.seed);
-    std::cout << "source: " << source << '\n';
-  } else {
-    const PreparedScene scene = prepare(load_scene(options.scene, options.scene_options), widths);
-    for (size_t i = 0; i < scene.unit.size(); ++i) {
-      Job job;
-      job.triangle = scene.unit[i];
-      job.design = designs[i % designs.size()];
-      job.viewport_width = scene.scene.width;
-      job.viewport_height = scene.scene.height;
-      job.origin = fmt::format("scene {} triangle {}", scene.scene.name, i);
-      jobs.push_back(std::move(job));
-    }
-    source = fmt::format("scene {} ({} triangles, {}x{})", scene.scene.name, jobs.size(), scene.scene.width,
-                         scene.scene.height);
-    std::cout << "source: " << source << '\n';
-  }
-  if (options.random > 0 && options.scene_and_random) {
-    for (Job& job : random_jobs(options.random, options.seed, widths, designs))
-      jobs.push_back(std::move(job));
-    std::cout << fmt::format("source: then {} random triangles (seed {})\n", options.random,
-                             options.seed);
-    source += fmt::format(", then {} random triangles (seed {})", options.random, options.seed);
-  }
-  for (size_t i = 0; i < jobs.size(); ++i) jobs[i].number = i;
+  std::vector<Job> jobs = source_jobs(options, widths, designs, source);
   const size_t source_triangles = jobs.size();
   const Shard shard = options.shard.empty() ? Shard{} : parse_shard("--shard", options.shard);
   if (!shard.whole()) {
@@ -237,11 +251,18 @@ int regress(const Widths* given) {
   // A coverage run takes a coverage build even at built-in widths.
   const bool coverage = !options.coverage_dir.empty();
   if (coverage) {
-    bench_options.coverage = coverage_data_path(options.coverage_dir, describe(widths), source, options.design,
+    bench_options.coverage = coverage_data_path(options.coverage_dir,
+                                                describe(widths) + (options.coverage_toggle ? "" : " no-toggle"),
+                                                source, options.design,
                                                 options.backpressure, options.shard, options.only);
   }
   const RunBench run_custom =
-      builtin.empty() || coverage ? load_custom_rtl(widths, options.rtl_cache, coverage) : nullptr;
+      builtin.empty() || coverage
+          ? load_custom_rtl(widths, options.rtl_cache,
+                            !coverage                ? CoverageBuild::None
+                            : options.coverage_toggle ? CoverageBuild::All
+                                                      : CoverageBuild::Lines)
+          : nullptr;
   InterruptWatch watch("interrupt_watch");
   int status = 0;
   if (run_custom) status = run_custom(&jobs, &widths, &bench_options);

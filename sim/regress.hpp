@@ -6,7 +6,9 @@
 #include <string>
 #include <vector>
 
+#include "design.hpp"
 #include "scene.hpp"
+#include "scoreboard.hpp"
 #include "widths.hpp"
 
 namespace CLI {
@@ -31,11 +33,33 @@ struct RegressOptions {
   std::string shard;                  // "I/N": every N-th triangle from the I-th (cdsim merge joins them)
   std::string json_path;              // the summary as JSON
   std::string coverage_dir;           // coverage data and report (regress --coverage)
+  bool coverage_toggle = true;        // false: a coverage build without toggle points (--no-toggle)
 };
 
 // Registers the `regress` subcommand and its options on app
 // (app/regress_cli.cpp: the command line needs no SystemC).
 CLI::App* add_regress_command(CLI::App& app, RegressOptions& options);
+
+// The widths of a built-in configuration (default, narrow, wide); throws
+// std::invalid_argument naming the built ones.
+Widths widths_of(const std::string& config);
+// --design: one design, a comma-separated list taken in turn, or mix (every
+// design with RTL); throws std::invalid_argument for a name without RTL.
+std::vector<const Design*> designs_for(const std::string& name);
+// The triangles of a run, numbered in the whole source: the scene, or
+// `random` seeded random triangles, or both (scene_and_random), the designs
+// taken in turn. Prints a "source:" line and describes the source in `source`.
+std::vector<Job> source_jobs(const RegressOptions& options, const Widths& widths,
+                             const std::vector<const Design*>& designs, std::string& source);
+
+// `cdsim vectors`: the model's expectations of each block for a replay on a
+// bench of the user's own, as $readmemh files (sim/vectors.cpp, docs/vectors.md).
+struct VectorsOptions {
+  RegressOptions source;  // scene or --random, --seed, --widths, --set, --design
+  std::string out;        // folder the files go to
+};
+CLI::App* add_vectors_command(CLI::App& app, VectorsOptions& options);
+int run_vectors_command(const VectorsOptions& options);
 
 // `cdsim coverage DIR...` (sim/rtl_coverage.cpp).
 struct CoverageOptions {

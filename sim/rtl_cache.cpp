@@ -227,42 +227,52 @@ void remove_stale(const fs::path& dir, const std::string& prefix) {
 }
 
 // Verilator as verilate() in sim/CMakeLists.txt runs it for the built-in configurations.
+// Verilator's coverage options for a coverage build, and the cover points.
+std::vector<std::string> coverage_args(CoverageBuild coverage) {
+  switch (coverage) {
+    case CoverageBuild::None: return {};
+    case CoverageBuild::Lines: return {"--coverage-line", "--coverage-user", build::kCoverSource};
+    case CoverageBuild::All: return {"--coverage", build::kCoverSource};
+  }
+  return {};
+}
+
 std::vector<std::string> verilator_command(const fs::path& verilated, const fs::path& header_dir,
-                                           bool coverage) {
+                                           CoverageBuild coverage) {
   std::vector<std::string> argv = {build::kVerilatorBin, "--compiler", build::kVerilatorCompiler,
                                    "--prefix", kPrefix, "--Mdir", verilated.string(),
                                    "--make", "cmake", "--top", build::kRtlTop, "--trace-fst", "--sc",
                                    "-y", header_dir.string(), "-y", kRtlDir};
   for (const std::string& a : strings(build::kVerilatorArgs)) argv.push_back(a);
   for (const std::string& s : strings(build::kRtlSources)) argv.push_back(s);
-  if (coverage) argv.insert(argv.end(), {"--coverage", build::kCoverSource});
+  for (const std::string& a : coverage_args(coverage)) argv.push_back(a);
   return argv;
 }
 
 // The model's compile flags; a coverage build defines VM_COVERAGE as verilate() would.
-std::vector<std::string> model_flags(bool coverage) {
+std::vector<std::string> model_flags(CoverageBuild coverage) {
   std::vector<std::string> flags = strings(build::kModelFlags);
-  if (coverage)
+  if (coverage != CoverageBuild::None)
     for (std::string& f : flags)
       if (f == "-DVM_COVERAGE=0") f = "-DVM_COVERAGE=1";
   return flags;
 }
 
 // What the model key covers besides the header and the RTL.
-std::string model_recipe(bool coverage) {
+std::string model_recipe(CoverageBuild coverage) {
   std::string recipe = fmt::format(
       "verilator: {} {} --prefix {} --top {} --trace-fst --sc {} {}\ncompiler: {} ({})\nflags: {}\n",
       build::kVerilatorBin, build::kVerilatorVersion, kPrefix, build::kRtlTop,
       joined(strings(build::kVerilatorArgs)), joined(strings(build::kRtlSources)),
       build::kCompiler, build::kCompilerVersion, joined(model_flags(coverage)));
-  if (coverage)
-    recipe += fmt::format("coverage: --coverage {} {}\n", build::kCoverSource,
+  if (coverage != CoverageBuild::None)
+    recipe += fmt::format("coverage: {} {}\n", joined(coverage_args(coverage)),
                           hex(fnv1a(read_text_file(build::kCoverSource))));
   return recipe;
 }
 
 void build_model(const fs::path& root, const fs::path& model_dir, const std::string& header,
-                 const std::string& inputs, bool coverage) {
+                 const std::string& inputs, CoverageBuild coverage) {
   const fs::path tmp = root / fmt::format("tmp-{}-{}", model_dir.filename().string(), getpid());
   fs::remove_all(tmp);
   fs::create_directories(tmp / "log");
@@ -361,7 +371,7 @@ void run_tool(const std::vector<std::string>& argv, const std::string& log, cons
   run_steps({{argv, log, what}}, 1);
 }
 
-RunBench load_custom_rtl(const Widths& widths, const std::string& cache_dir, bool coverage) {
+RunBench load_custom_rtl(const Widths& widths, const std::string& cache_dir, CoverageBuild coverage) {
   const std::string header = rtl_header(widths, "custom");
   const fs::path root = fs::absolute(cache_dir.empty() ? default_rtl_cache_dir() : cache_dir);
   fs::create_directories(root);
@@ -390,7 +400,10 @@ RunBench load_custom_rtl(const Widths& widths, const std::string& cache_dir, boo
     remove_stale(root, "tmp-");
     std::cout << fmt::format(
         "regress: building the RTL{} for widths {} in {} (first use; about {:.0f} s)\n",
-        coverage ? " with coverage" : "", describe(widths), model_dir.string(), timings.model + timings.bench);
+        coverage == CoverageBuild::All     ? " with coverage"
+        : coverage == CoverageBuild::Lines ? " with line coverage"
+                                           : "",
+        describe(widths), model_dir.string(), timings.model + timings.bench);
     std::cout.flush();
     build_model(root, model_dir, header, inputs, coverage);
     timings.model = seconds_since(start);

@@ -22,9 +22,13 @@ using RunBench = int (*)(const std::vector<Job>* jobs, const Widths* widths,
 // (empty: default_rtl_cache_dir()) on first use, saying what it does; later
 // calls reuse it. Throws std::runtime_error naming the log when Verilator or
 // the compiler fails.
-// With `coverage`, the model is verilated with --coverage (line, toggle and
-// the user cover points of sim/cover/cd_scan_cover.sv), cached apart.
-RunBench load_custom_rtl(const Widths& widths, const std::string& cache_dir, bool coverage = false);
+// A coverage build is verilated with Verilator's coverage points and the user
+// cover points of sim/cover/cd_scan_cover.sv, and cached apart: All has line,
+// branch and toggle points; Lines leaves out toggle points, which makes the
+// build and the run several times faster.
+enum class CoverageBuild { None, Lines, All };
+RunBench load_custom_rtl(const Widths& widths, const std::string& cache_dir,
+                         CoverageBuild coverage = CoverageBuild::None);
 
 // Runs one tool (argv[0] looked up on PATH), its output to `log`; throws
 // naming `what`, the exit status and the log's first lines when it fails.
