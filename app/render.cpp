@@ -107,11 +107,7 @@ int run_render_command(const RenderOptions& options) {
   const Widths widths = widths_from(options.common);
   const PreparedScene scene = prepared_scene(options.common, widths);
   const std::vector<Design> designs = designs_from(options.common.designs);
-  std::error_code folder_error;
-  std::filesystem::create_directories(options.out, folder_error);
-  if (folder_error)
-    throw std::runtime_error(
-        fmt::format("--out {}: cannot create the folder: {}", options.out, folder_error.message()));
+  create_output_folder(options.out);
   const OutputFolderLock lock(options.out);
   std::cout << provenance(scene.scene, widths) << std::flush;
   const int width = scene.scene.width, height = scene.scene.height;

@@ -265,10 +265,7 @@ int run_sweep_command(const SweepOptions& options) {
   }
 
   // The folder is locked before the long part, so that a second sweep into it stops at once.
-  std::error_code error;
-  std::filesystem::create_directories(options.out, error);
-  if (error)
-    throw std::runtime_error(fmt::format("--out {}: cannot create the folder: {}", options.out, error.message()));
+  create_output_folder(options.out);
   const OutputFolderLock lock(options.out);
 
   const Scene scene = load_scene(options.common.scene, options.common.scene_options);
@@ -531,10 +528,7 @@ int run_merge_command(const MergeOptions& options) {
     merged["rows"].push_back(*json_rows[g]);
     csv += *csv_rows[g] + '\n';
   }
-  std::error_code error;
-  fs::create_directories(options.out, error);
-  if (error)
-    throw std::runtime_error(fmt::format("--out {}: cannot create the folder: {}", options.out, error.message()));
+  create_output_folder(options.out);
   const OutputFolderLock lock(options.out);
   const std::string csv_path = (fs::path(options.out) / "sweep.csv").string();
   const std::string json_path = (fs::path(options.out) / "sweep.json").string();

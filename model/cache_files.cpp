@@ -138,6 +138,14 @@ fs::path cache_root(const std::string& name) {
   return fs::temp_directory_path() / ("cdsim-" + name);
 }
 
+void create_output_folder(const std::filesystem::path& folder) {
+  std::error_code error;
+  std::filesystem::create_directories(folder, error);
+  if (error)
+    throw std::runtime_error(
+        fmt::format("--out {}: cannot create the folder: {}", folder.string(), error.message()));
+}
+
 OutputFolderLock::OutputFolderLock(const fs::path& folder) {
   const fs::path lock = folder / ".cdsim.lock";
   fd_ = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);

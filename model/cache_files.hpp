@@ -34,6 +34,10 @@ void write_files_atomic(const std::vector<std::pair<std::filesystem::path, std::
 // $XDG_CACHE_HOME/cdsim/<name>, else ~/.cache/cdsim/<name>, else a temporary folder.
 std::filesystem::path cache_root(const std::string& name);
 
+// Creates an output folder (an --out) and its parents; throws
+// std::runtime_error "--out FOLDER: cannot create the folder: REASON".
+void create_output_folder(const std::filesystem::path& folder);
+
 // An exclusive flock(2) on FOLDER/.cdsim.lock, held while the object lives
 // (the kernel drops it when the process ends, however it ends). A second run
 // on the same folder throws std::runtime_error naming the folder at once

@@ -146,11 +146,7 @@ int run_vectors_command(const VectorsOptions& given) {
     std::cout << fmt::format("vectors: seed {}\n", o.seed);
     std::string source;
     const std::vector<Job> jobs = source_jobs(o, widths, designs, source);
-    std::error_code folder_error;
-    std::filesystem::create_directories(given.out, folder_error);
-    if (folder_error)
-      throw std::runtime_error(
-          fmt::format("--out {}: cannot create the folder: {}", given.out, folder_error.message()));
+    create_output_folder(given.out);
     const OutputFolderLock lock(given.out);
     std::cout << fmt::format("widths: {}{} ({})\n", o.widths, o.settings.empty() ? "" : " with --set",
                              describe(widths));
