@@ -392,8 +392,12 @@ double nand2_area_um2(const AreaOptions& options) {
 
 nlohmann::json area_summary_json(const AreaReport& r) {
   double nand2_eq = 0;
-  for (const BlockArea& b : r.blocks) nand2_eq += b.nand2_eq;
-  return {{"logic_area_um2", r.logic_area_um2}, {"nand2_eq", nand2_eq},
+  int64_t flops = 0;
+  for (const BlockArea& b : r.blocks) {
+    nand2_eq += b.nand2_eq;
+    flops += b.flops;
+  }
+  return {{"logic_area_um2", r.logic_area_um2}, {"nand2_eq", nand2_eq}, {"flops", flops},
           {"sram_bits", r.sram_bits},           {"sram_area_um2", r.sram_area_um2},
           {"flop_table_area_um2", r.flop_table_area_um2}, {"total_area_um2", r.total_area_um2}};
 }
@@ -404,13 +408,13 @@ std::string area_table(const std::vector<AreaReport>& reports, const AreaOptions
       options.estimate ? "the component area model, calibrated by Yosys," : "Yosys",
       fs::path(options.liberty).filename().string(), nand2_area_um2(options), options.sram_cell_um2,
       options.sram_efficiency);
-  out += fmt::format("{:<17} {:>13} {:>10} {:>10} {:>12} {:>13}\n", "design", "logic um^2", "NAND2-eq",
-                     "SRAM bits", "SRAM um^2", "total um^2");
+  out += fmt::format("{:<17} {:>13} {:>10} {:>8} {:>10} {:>12} {:>13}\n", "design", "logic um^2",
+                     "NAND2-eq", "flops", "SRAM bits", "SRAM um^2", "total um^2");
   for (const AreaReport& r : reports) {
     const nlohmann::json a = area_summary_json(r);
-    out += fmt::format("{:<17} {:>13.0f} {:>10.0f} {:>10} {:>12.0f} {:>13.0f}\n", r.design,
-                       r.logic_area_um2, a.at("nand2_eq").get<double>(), r.sram_bits, r.sram_area_um2,
-                       r.total_area_um2);
+    out += fmt::format("{:<17} {:>13.0f} {:>10.0f} {:>8} {:>10} {:>12.0f} {:>13.0f}\n", r.design,
+                       r.logic_area_um2, a.at("nand2_eq").get<double>(), a.at("flops").get<int64_t>(),
+                       r.sram_bits, r.sram_area_um2, r.total_area_um2);
   }
   return out;
 }

@@ -112,10 +112,10 @@ std::string csv_field(const std::string& text) {
 std::string csv_header() {
   std::string h = "scene,design";
   for (const auto& p : param_table()) h += fmt::format(",{}", p.name);
-  h += ",swept,pixels,cycles,pixels_per_clock,table_entries,table_bits,register_bits,error_mean,"
+  h += ",swept,pixels,cycles,pixels_per_clock,table_entries,table_bits,error_mean,"
        "error_rms,error_p99,error_max,footprint_max,texel_mismatch,over_lsb,flagged_triangles";
   // Empty unless the sweep ran with --area and the design has RTL.
-  h += ",logic_area_um2,nand2_eq,sram_bits,sram_area_um2,flop_table_area_um2,total_area_um2";
+  h += ",logic_area_um2,nand2_eq,flops,sram_bits,sram_area_um2,flop_table_area_um2,total_area_um2";
   return h;
 }
 
@@ -136,18 +136,18 @@ std::string csv_row(const std::string& scene, const Config& c, const DesignResul
                     const AreaReport* area) {
   std::string row = fmt::format("{},{}", csv_field(scene), c.design.name);
   for (const auto& p : param_table()) row += fmt::format(",{}", c.widths.*(p.field));
-  row += fmt::format(",{},{},{},{:.6f},{},{},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{}",
+  row += fmt::format(",{},{},{},{:.6f},{},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{}",
                      swept_names(c), r.pixels, r.cycles, r.pixels_per_clock(), r.table_depth,
-                     r.table_bits, r.register_bits, r.error.mean, r.error.rms, r.error.p99,
+                     r.table_bits, r.error.mean, r.error.rms, r.error.p99,
                      r.error.max, r.error.footprint_max, r.error.texel_mismatch, r.error.over_lsb,
                      flagged(r));
   if (area) {
     const nlohmann::json a = area_summary_json(*area);
-    row += fmt::format(",{:.1f},{:.1f},{},{:.1f},{:.1f},{:.1f}", area->logic_area_um2,
-                       a.at("nand2_eq").get<double>(), area->sram_bits, area->sram_area_um2,
-                       area->flop_table_area_um2, area->total_area_um2);
+    row += fmt::format(",{:.1f},{:.1f},{},{},{:.1f},{:.1f},{:.1f}", area->logic_area_um2,
+                       a.at("nand2_eq").get<double>(), a.at("flops").get<int64_t>(), area->sram_bits,
+                       area->sram_area_um2, area->flop_table_area_um2, area->total_area_um2);
   } else {
-    row += ",,,,,,";
+    row += ",,,,,,,";
   }
   return row;
 }

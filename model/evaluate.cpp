@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "cost.hpp"
 #include "exact.hpp"
 #include "interrupt.hpp"
 
@@ -37,7 +36,6 @@ DesignResult evaluate(const PreparedScene& prepared, const Design& design, const
   DesignResult result;
   result.design = design;
   result.triangles = static_cast<int64_t>(prepared.unit.size());
-  result.register_bits = register_bits(design, widths);
   if (design.kind == Design::Kind::ConstantDepth) {
     result.table_depth = widths.table_depth * design.density;
     result.table_word_bits = widths.table_word_bits();

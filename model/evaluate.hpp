@@ -42,7 +42,6 @@ struct DesignResult {
   int64_t lines = 0, banded_triangles = 0, x_major_triangles = 0, y_major_triangles = 0;
   int table_depth = 0, table_word_bits = 0;
   int64_t table_bits = 0, table_high_water = 0;
-  int64_t register_bits = 0;
   ErrorStats error;
   std::array<int64_t, flag::kCount> flagged_triangles{};  // triangles raising each flag
   WorstPixel worst;

@@ -35,13 +35,13 @@ std::string flag_summary(const DesignResult& r) {
 
 std::string results_table(const std::vector<DesignResult>& results, const Widths& widths) {
   std::string out = fmt::format(
-      "{:<17} {:>9} {:>10} {:>6} {:>6} {:>10} {:>8} {:>9} {:>9} {:>9} {:>9} {:>8}  {}\n", "design",
-      "pixels", "cycles", "px/clk", "depth", "table_bits", "reg_bits", "mean_err", "p99_err", "max_err",
+      "{:<17} {:>9} {:>10} {:>6} {:>6} {:>10} {:>9} {:>9} {:>9} {:>9} {:>8}  {}\n", "design",
+      "pixels", "cycles", "px/clk", "depth", "table_bits", "mean_err", "p99_err", "max_err",
       "fp_max", "texel%", "flags (triangles)");
   for (const DesignResult& r : results) {
-    out += fmt::format("{:<17} {:>9} {:>10} {:>6.3f} {:>6} {:>10} {:>8} {:>9.2e} {:>9.2e} {:>9.2e} {:>9.2e} {:>8.4f}  {}\n",
+    out += fmt::format("{:<17} {:>9} {:>10} {:>6.3f} {:>6} {:>10} {:>9.2e} {:>9.2e} {:>9.2e} {:>9.2e} {:>8.4f}  {}\n",
                        r.design.name, r.pixels, r.cycles, r.pixels_per_clock(), r.table_depth,
-                       r.table_bits, r.register_bits, r.error.mean, r.error.p99, r.error.max,
+                       r.table_bits, r.error.mean, r.error.p99, r.error.max,
                        r.error.footprint_max, 100.0 * r.error.texel_mismatch, flag_summary(r));
   }
   out += fmt::format("errors in texels against the exact reference (max(|du|,|dv|) per pixel); "
@@ -87,7 +87,6 @@ nlohmann::json results_json(const Scene& scene, const Widths& widths,
     d["table_word_bits"] = r.table_word_bits;
     d["table_bits"] = r.table_bits;
     d["table_high_water"] = r.table_high_water;
-    d["register_bits"] = r.register_bits;
     d["lines_filled"] = r.lines;
     d["triangles"] = r.triangles;
     d["banded_triangles"] = r.banded_triangles;

@@ -18,11 +18,11 @@ FAMILY_STYLE = {
     "kim-iter": ("tab:brown", "P"), "kim-pipe": ("tab:pink", "*"), "affine-sub16": ("tab:gray", "<"),
     "affine-sub8": ("tab:olive", ">"), "affine": ("tab:cyan", "h"),
 }
-NUMERIC = ["pixels", "cycles", "pixels_per_clock", "table_entries", "table_bits", "register_bits",
+NUMERIC = ["pixels", "cycles", "pixels_per_clock", "table_entries", "table_bits",
            "error_mean", "error_rms", "error_p99", "error_max", "footprint_max", "texel_mismatch",
            "over_lsb", "flagged_triangles"]
 # Present, and empty unless the sweep ran with --area and the design has RTL.
-AREA = ["logic_area_um2", "nand2_eq", "sram_bits", "sram_area_um2", "flop_table_area_um2",
+AREA = ["logic_area_um2", "nand2_eq", "flops", "sram_bits", "sram_area_um2", "flop_table_area_um2",
         "total_area_um2"]
 
 

@@ -18,6 +18,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <iostream>
 #include <memory>
 #include <random>
@@ -47,6 +48,9 @@ struct BenchOptions {
   // (regress.cpp, hang_cycle_limit: scaled by the model's cycles and the back-pressure).
   std::vector<int64_t> cycle_limits;
   BenchSummary* summary = nullptr;  // filled at the end, if given
+  // Called after each triangle's record with the triangles done (regress's
+  // progress on stderr); not during the replay of a failing triangle.
+  std::function<void(size_t)> on_record;
 };
 
 
@@ -203,6 +207,7 @@ class Bench : public sc_core::sc_module {
       if (checking_ && !scoreboard_.record(r, stalls_)) fail();
       in_flight_ = false;
       ++triangles_done_;
+      if (options_.on_record && !replay_) options_.on_record(triangles_done_);
       if (failed_ || replay_) {
         tri_valid.write(false);
         sc_core::sc_pause();

@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -27,6 +28,7 @@
 #include "bench.hpp"
 #include "evaluate.hpp"
 #include "interrupt.hpp"
+#include "progress.hpp"
 #include "random_triangles.hpp"
 #include "rtl_coverage.hpp"
 #include "rtl_cache.hpp"
@@ -242,6 +244,22 @@ int regress(const Widths* given) {
   bench_options.cycle_limits = hang_limits(jobs, widths, options.backpressure);
   BenchSummary summary;
   bench_options.summary = &summary;
+  // Progress on stderr (a bar on a terminal, else a line every 5 s), looked
+  // at every 64 triangles and redrawn at most 5 times a second.
+  Progress progress(jobs.size(), "regress", "triangles");
+  const auto start = std::chrono::steady_clock::now();
+  double next_draw = 0;
+  bool drawn = false, ended = false;
+  bench_options.on_record = [&](size_t done) {
+    const bool last = done == jobs.size();
+    if (done % 64 != 0 && !last) return;
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (seconds < next_draw && !last) return;
+    next_draw = seconds + 0.2;
+    drawn = true;
+    ended = last;
+    progress.update(done, seconds, last);
+  };
   std::cout << fmt::format(
       "hang limit: 4 x (model cycles + pixels x p / (1 - p)) + 1000 per triangle, at most {}\n",
       bench_options.cycle_limits.empty()
@@ -270,6 +288,9 @@ int regress(const Widths* given) {
   else if (builtin == "narrow") status = run_bench<Vcd_scan_unit_narrow>(jobs, widths, bench_options);
   else status = run_bench<Vcd_scan_unit_wide>(jobs, widths, bench_options);
   throw_if_interrupted();
+  if (drawn && !ended)  // a run that stopped early ends its bar too
+    progress.update(static_cast<size_t>(std::max<int64_t>(0, summary.triangles)),
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), true);
   if (!options.trace.empty() && !std::filesystem::exists(options.trace))
     throw std::runtime_error(fmt::format("--trace {}: the waveform was not written", options.trace));
   if (coverage) {

@@ -9,7 +9,7 @@ rows=$(($(wc -l < "$out/sweep.csv") - 1))
 # 3 designs x 3 g_frac values x 2 kim_frac values
 [ "$rows" -eq 18 ] || { echo "FAIL: expected 18 rows, found $rows"; exit 1; }
 head -1 "$out/sweep.csv" | grep -q "design,subpixel_bits" || { echo "FAIL: header"; exit 1; }
-for column in cycles pixels_per_clock table_bits register_bits error_mean error_rms error_p99 error_max footprint_max texel_mismatch; do
+for column in cycles pixels_per_clock table_bits error_mean error_rms error_p99 error_max footprint_max texel_mismatch; do
   head -1 "$out/sweep.csv" | tr ',' '\n' | grep -qx "$column" || { echo "FAIL: no column $column"; exit 1; }
 done
 /usr/bin/python3 - "$out" <<'PY'
