@@ -33,12 +33,6 @@ namespace {
 // Bumped whenever the flow below changes, so that cached results are redone.
 constexpr const char* kFlowVersion = "area-flow-4";
 
-int log2_of(int value) {
-  int bits = 0;
-  while ((1 << bits) < value) ++bits;
-  return bits;
-}
-
 // Yosys writes "=== cd_scan_unit ===" but "Chip area for module '\cd_scan_unit'".
 std::string strip_escape(const std::string& name) {
   return !name.empty() && name[0] == '\\' ? name.substr(1) : name;
@@ -198,7 +192,7 @@ UnitConfig prepare_unit(const Design& design, const Widths& widths, const AreaOp
   const fs::path cache = options.cache_dir.empty() ? cache_root("area") : fs::path(options.cache_dir);
   c.dir = cache / fmt::format("{:016x}", hash);
   fs::create_directories(c.dir);
-  c.sram_depth = c.has_table ? int64_t{widths.table_depth} << log2_of(design.density) : 0;
+  c.sram_depth = c.has_table ? int64_t{widths.table_depth} << log2_ceil(design.density) : 0;
   c.word_bits = derived.word_bits;
   c.flop_lines = std::min<int64_t>(c.sram_depth, 64);  // 0: no table
 

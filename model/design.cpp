@@ -45,11 +45,6 @@ std::string rtl_design_names() {
 }
 
 std::vector<UnitParameter> unit_parameters(const std::vector<const Design*>& designs) {
-  const auto log2_of = [](int value) {
-    int bits = 0;
-    while ((1 << bits) < value) ++bits;
-    return bits;
-  };
   int density_log2 = 0, segment_log2 = 0;
   bool correction = false, table = false, divide = false, affine = false, affine_sub = false;
   bool kim_iter = false, kim_pipe = false;
@@ -57,7 +52,7 @@ std::vector<UnitParameter> unit_parameters(const std::vector<const Design*>& des
     switch (d->kind) {
       case Design::Kind::ConstantDepth:
         table = true;
-        density_log2 = std::max(density_log2, log2_of(d->density));
+        density_log2 = std::max(density_log2, log2_ceil(d->density));
         correction = correction || d->correction;
         break;
       case Design::Kind::Divide: divide = true; break;
@@ -67,7 +62,7 @@ std::vector<UnitParameter> unit_parameters(const std::vector<const Design*>& des
           affine = true;
         } else {
           affine_sub = true;
-          segment_log2 = std::max(segment_log2, log2_of(d->subdivision));
+          segment_log2 = std::max(segment_log2, log2_ceil(d->subdivision));
         }
         break;
     }

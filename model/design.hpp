@@ -29,6 +29,30 @@ const Design& find_design(const std::string& name);
 // "a,b,c" -> designs; empty text -> all.
 std::vector<Design> parse_design_list(const std::string& list);
 
+// The unit's design inputs for one triangle (rtl/cd_scan_unit.sv: kind_i,
+// segment_log2_i, kim_pipelined_i, density_log2_i, correction_i).
+struct DesignSelect {
+  int kind = 0;          // Design::Kind
+  int segment_log2 = 0;  // affine-subN: log2 N; plain affine and the others: 0
+  bool kim_pipelined = false;
+  int density_log2 = 0;  // constant-depth lines per pixel m = 2^density_log2
+  bool correction = false;
+};
+inline int log2_ceil(int value) {
+  int bits = 0;
+  while ((1 << bits) < value) ++bits;
+  return bits;
+}
+inline DesignSelect design_select(const Design& d) {
+  DesignSelect s;
+  s.kind = static_cast<int>(d.kind);
+  s.segment_log2 = d.kind == Design::Kind::Affine ? log2_ceil(d.subdivision) : 0;
+  s.kim_pipelined = d.kind == Design::Kind::Kim && d.pipelined;
+  s.density_log2 = log2_ceil(d.density);
+  s.correction = d.correction;
+  return s;
+}
+
 // The parameters of rtl/cd_scan_unit.sv that elaborate a unit holding exactly
 // the hardware these designs need: each one's datapath, a table as dense as
 // the densest needs, the longest affine segment. In the unit's order, without

@@ -228,11 +228,12 @@ class Bench : public sc_core::sc_module {
       }
       viewport_width.write(static_cast<uint32_t>(job.viewport_width));
       viewport_height.write(static_cast<uint32_t>(job.viewport_height));
-      kind.write(static_cast<uint32_t>(job.design->kind));
-      segment_log2.write(job.design->subdivision == 16 ? 4u : job.design->subdivision == 8 ? 3u : 0u);
-      density_log2.write(job.design->density == 4 ? 2u : job.design->density == 2 ? 1u : 0u);
-      correction.write(job.design->correction);
-      kim_pipelined.write(job.design->kind == Design::Kind::Kim && job.design->pipelined);
+      const DesignSelect select = design_select(*job.design);
+      kind.write(static_cast<uint32_t>(select.kind));
+      segment_log2.write(static_cast<uint32_t>(select.segment_log2));
+      density_log2.write(static_cast<uint32_t>(select.density_log2));
+      correction.write(select.correction);
+      kim_pipelined.write(select.kim_pipelined);
       tri_valid.write(true);
       presenting_ = true;
       current_ = next_job_++;

@@ -76,18 +76,11 @@ std::string word(const Layout& layout, std::initializer_list<int64_t> values) {
   return text + '\n';
 }
 
-int log2_of(int value) {
-  int bits = 0;
-  while ((1 << bits) < value) ++bits;
-  return bits;
-}
-
 std::string triangle_word(const Job& job) {
-  const Design& d = *job.design;
+  const DesignSelect d = design_select(*job.design);
   const auto& v = job.triangle.vertex;
   return word(kTriangle,
-              {static_cast<int64_t>(d.kind), d.kind == Design::Kind::Affine ? log2_of(d.subdivision) : 0,
-               d.kind == Design::Kind::Kim && d.pipelined, log2_of(d.density), d.correction,
+              {d.kind, d.segment_log2, d.kim_pipelined, d.density_log2, d.correction,
                job.viewport_width, job.viewport_height,
                v[0].x, v[0].y, v[0].q_float, v[0].u, v[0].v,
                v[1].x, v[1].y, v[1].q_float, v[1].u, v[1].v,
