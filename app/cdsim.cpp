@@ -73,6 +73,7 @@ int run_command(const CommonOptions& options, const std::string& json_path, bool
     results.push_back(evaluate(scene, d, widths, true, dumped ? &to_dump : nullptr));
   }
   std::cout << results_table(results, widths);
+  std::cout << cycle_breakdown_table(results);
   if (show_worst) std::cout << worst_pixels(results, scene.scene, widths);
   nlohmann::json json = results_json(scene.scene, widths, results);
   if (with_area) {

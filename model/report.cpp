@@ -50,6 +50,19 @@ std::string results_table(const std::vector<DesignResult>& results, const Widths
   return out;
 }
 
+std::string cycle_breakdown_table(const std::vector<DesignResult>& results) {
+  std::string out = fmt::format("\ncycles by phase (setup, table fill and walk run in turn, triangle after triangle):\n"
+                                "{:<17} {:>10} {:>7} {:>10} {:>7} {:>10} {:>7} {:>10} {:>6}\n",
+                                "design", "setup", "share", "fill", "share", "walk", "share", "px/tri", "px/clk");
+  const auto share = [](int64_t part, int64_t whole) { return whole ? 100.0 * double(part) / double(whole) : 0.0; };
+  for (const DesignResult& r : results)
+    out += fmt::format("{:<17} {:>10} {:>6.1f}% {:>10} {:>6.1f}% {:>10} {:>6.1f}% {:>10.2f} {:>6.3f}\n",
+                       r.design.name, r.setup_cycles, share(r.setup_cycles, r.cycles), r.fill_cycles,
+                       share(r.fill_cycles, r.cycles), r.walk_cycles, share(r.walk_cycles, r.cycles),
+                       r.triangles ? double(r.pixels) / double(r.triangles) : 0.0, r.pixels_per_clock());
+  return out;
+}
+
 std::string worst_pixels(const std::vector<DesignResult>& results, const Scene& scene,
                          const Widths& widths) {
   std::string out = "worst pixel per design:\n";

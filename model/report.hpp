@@ -15,6 +15,11 @@ std::string provenance(const Scene& scene, const Widths& widths);
 std::string worst_pixels(const std::vector<DesignResult>& results, const Scene& scene,
                          const Widths& widths);
 std::string results_table(const std::vector<DesignResult>& results, const Widths& widths);
+// Where each design's cycles go: setup, table fill and walk (the unit runs
+// them one after another, triangle after triangle; docs/rtl.md), with pixels
+// per triangle, the figure that decides how far from one pixel per clock a
+// scene of small triangles stays.
+std::string cycle_breakdown_table(const std::vector<DesignResult>& results);
 nlohmann::json results_json(const Scene& scene, const Widths& widths,
                             const std::vector<DesignResult>& results);
 

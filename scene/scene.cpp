@@ -188,6 +188,41 @@ Scene default_scene() {
   return scene;
 }
 
+Scene dense_scene() {
+  constexpr int kRings = 128, kSegments = 256;
+  constexpr double kPi = 3.14159265358979323846;
+  Mesh mesh;
+  // Vertices ring by ring from pole to pole; the seam repeats its column so
+  // that s runs from 0 to 4 tiles without wrapping.
+  for (int i = 0; i <= kRings; ++i) {
+    const double theta = kPi * i / kRings;
+    for (int j = 0; j <= kSegments; ++j) {
+      const double phi = 2 * kPi * j / kSegments;
+      mesh.vertices.push_back({{std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi)},
+                               {4.0 * j / kSegments, 2.0 * i / kRings}});
+    }
+  }
+  const auto at = [](int i, int j) { return static_cast<uint32_t>(i * (kSegments + 1) + j); };
+  for (int i = 0; i < kRings; ++i)
+    for (int j = 0; j < kSegments; ++j) {
+      // The ring at a pole is one point: one triangle per segment there.
+      if (i != 0) mesh.triangles.push_back({at(i, j), at(i, j + 1), at(i + 1, j + 1)});
+      if (i != kRings - 1) mesh.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i + 1, j)});
+    }
+  mesh.texture_size.assign(mesh.triangles.size(), glm::ivec2{512, 512});
+  Camera camera;
+  camera.eye = {0.3, 0.4, 3.2};
+  camera.target = {0, 0, 0};
+  camera.fov_y_degrees = 50;
+  Scene scene = project(mesh, camera, 1280, 720, "dense");
+  scene.description = fmt::format(
+      "embedded UV sphere, {} rings x {} segments ({} triangles), 1280x720, eye ({}, {}, {}) "
+      "target (0, 0, 0) fov_y {}",
+      kRings, kSegments, mesh.triangles.size(), camera.eye.x, camera.eye.y, camera.eye.z,
+      camera.fov_y_degrees);
+  return scene;
+}
+
 Scene load_triangle_file(const std::string& path) {
   const std::vector<uint8_t> bytes = read_file_bytes(path);
   return load_triangle_text(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()),
@@ -277,6 +312,11 @@ Scene load_scene(const std::string& spec, const SceneOptions& options) {
   if (spec.empty() || spec == "default") {
     if (options.empty()) return default_scene();
     return load_scene_file("default", options);
+  }
+  if (spec == "dense") {
+    if (!options.empty())
+      throw InputError("dense: --camera, --spawn and --resolution do not apply to the embedded dense scene");
+    return dense_scene();
   }
   if (is_scene_file(spec)) return load_scene_file(spec, options);
   if (!options.empty())

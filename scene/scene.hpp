@@ -51,6 +51,12 @@ Mesh default_mesh();
 Camera default_camera();
 Scene default_scene();
 
+// The embedded dense scene (--scene dense): a UV sphere of 128 x 256
+// segments (65,024 triangles) filling the middle of a 1280x720 view, front
+// and back faces drawn, so that triangles cover a few pixels each: the hard
+// case for the unit's throughput (issue "Throughput on dense meshes").
+Scene dense_scene();
+
 // A list of screen-space triangles that bypass the front end, one per line:
 // "x y w u v" for each of the three vertices (15 numbers); '#' starts a comment;
 // a line "resolution W H" sets the viewport. Every number must be the whole

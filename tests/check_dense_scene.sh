@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# The embedded dense scene (--scene dense) has what it is for: tens of
+# thousands of triangles of a few pixels each, and `cdsim run` prints a cycle
+# breakdown (setup, fill, walk) that adds up to each design's cycles, in its
+# table and in its JSON.
+# Usage: check_dense_scene.sh CDSIM WORKDIR
+set -euo pipefail
+cdsim=$1 work=$2
+rm -rf "$work" && mkdir -p "$work"
+"$cdsim" run --scene dense --design cd-linear,divide --json "$work/run.json" > "$work/run.txt"
+cat "$work/run.txt"
+/usr/bin/python3 - "$work" <<'PY'
+import json, sys
+work = sys.argv[1]
+run = json.load(open(f"{work}/run.json"))
+lines = open(f"{work}/run.txt").read().splitlines()
+breakdown = lines[next(i for i, l in enumerate(lines) if l.startswith("cycles by phase")):]
+failures = []
+def expect(cond, what):
+    print(("ok   " if cond else "FAIL ") + what)
+    if not cond: failures.append(what)
+for d in run["designs"]:
+    name, b = d["name"], d["cycle_breakdown"]
+    per_triangle = d["pixels"] / d["triangles"]
+    expect(d["triangles"] > 60000, f"{name}: {d['triangles']} triangles")
+    expect(2 <= per_triangle <= 10, f"{name}: {per_triangle:.2f} pixels a triangle")
+    expect(b["setup"] + b["fill"] + b["walk"] == d["cycles"], f"{name}: setup + fill + walk = cycles")
+    row = next(l for l in breakdown if l.startswith(name + " "))
+    expect(str(b["setup"]) in row and str(b["walk"]) in row, f"{name}: the breakdown table shows the JSON's figures")
+expect(run["designs"][1]["cycle_breakdown"]["fill"] == 0, "divide has no table fill")
+sys.exit(1 if failures else 0)
+PY
