@@ -13,7 +13,7 @@ namespace cdsim {
 
 inline void add_scene_options(CLI::App* app, std::string& scene, SceneOptions& options) {
   app->add_option("--scene", scene,
-                  "'default' (embedded corridor), a .tri triangle list, a .json scene file, a mesh "
+                  "'default' (embedded corridor), 'dense' (embedded sphere of small triangles), a .tri triangle list, a .json scene file, a mesh "
                   "(.obj, .gltf, .glb) with --camera, or a Quake 3 map (.bsp or "
                   "FILE.pk3:maps/NAME.bsp) with --spawn or --camera (docs/scenes.md)")
       ->capture_default_str();
