@@ -268,6 +268,9 @@ int regress(const Widths* given) {
   std::cout.flush();
   // A coverage run takes a coverage build even at built-in widths.
   const bool coverage = !options.coverage_dir.empty();
+  const CoverageBuild coverage_build = !coverage                ? CoverageBuild::None
+                                       : options.coverage_toggle ? CoverageBuild::All
+                                                                 : CoverageBuild::Lines;
   if (coverage) {
     bench_options.coverage = coverage_data_path(options.coverage_dir,
                                                 describe(widths) + (options.coverage_toggle ? "" : " no-toggle"),
@@ -275,12 +278,7 @@ int regress(const Widths* given) {
                                                 options.backpressure, options.shard, options.only);
   }
   const RunBench run_custom =
-      builtin.empty() || coverage
-          ? load_custom_rtl(widths, options.rtl_cache,
-                            !coverage                ? CoverageBuild::None
-                            : options.coverage_toggle ? CoverageBuild::All
-                                                      : CoverageBuild::Lines)
-          : nullptr;
+      builtin.empty() || coverage ? load_custom_rtl(widths, options.rtl_cache, coverage_build) : nullptr;
   InterruptWatch watch("interrupt_watch");
   int status = 0;
   if (run_custom) status = run_custom(&jobs, &widths, &bench_options);

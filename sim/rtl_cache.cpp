@@ -226,7 +226,6 @@ void remove_stale(const fs::path& dir, const std::string& prefix) {
   }
 }
 
-// Verilator as verilate() in sim/CMakeLists.txt runs it for the built-in configurations.
 // Verilator's coverage options for a coverage build, and the cover points.
 std::vector<std::string> coverage_args(CoverageBuild coverage) {
   switch (coverage) {
@@ -237,6 +236,7 @@ std::vector<std::string> coverage_args(CoverageBuild coverage) {
   return {};
 }
 
+// Verilator as verilate() in sim/CMakeLists.txt runs it for the built-in configurations.
 std::vector<std::string> verilator_command(const fs::path& verilated, const fs::path& header_dir,
                                            CoverageBuild coverage) {
   std::vector<std::string> argv = {build::kVerilatorBin, "--compiler", build::kVerilatorCompiler,
