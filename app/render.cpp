@@ -122,7 +122,7 @@ int run_render_command(const RenderOptions& options) {
   for (size_t t = 0; t < scene.unit.size(); ++t) {
     throw_if_interrupted();
     fragments.clear();
-    coverage.run(scene.unit[t], &fragments);
+    coverage.compute(scene.unit[t], &fragments);  // values only: no cycles
     if (fragments.empty()) continue;
     const ExactReference exact(scene.scene.triangles[t], scene.unit[t], widths.subpixel_bits);
     for (const Fragment& f : fragments) {
@@ -153,7 +153,7 @@ int run_render_command(const RenderOptions& options) {
     for (size_t t = 0; t < scene.unit.size(); ++t) {
       throw_if_interrupted();
       fragments.clear();
-      unit.run(scene.unit[t], &fragments);
+      unit.compute(scene.unit[t], &fragments);
       for (const Fragment& f : fragments) {
         const size_t at = size_t(f.y) * size_t(width) + size_t(f.x);
         if (owner[at] != int64_t(t)) continue;

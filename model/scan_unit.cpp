@@ -4,7 +4,6 @@
 #include <cstdlib>
 
 #include "column_walker.hpp"
-#include "derived_widths.hpp"
 #include "correction_adder.hpp"
 #include "affine_datapath.hpp"
 #include "divide_datapath.hpp"
@@ -20,16 +19,29 @@ ScanUnit::ScanUnit(const Design& design, const Widths& widths, int viewport_widt
       viewport_width_(viewport_width),
       viewport_height_(viewport_height),
       table_(widths.table_depth * design.density),
-      setup_cycles_(derive(widths).setup_cycles) {}
+      timing_(design, widths) {}
 
 TriangleRecord ScanUnit::run(const UnitTriangle& triangle, std::vector<Fragment>* fragments) {
+  TriangleRecord record = compute(triangle, fragments);
+  const TriangleCycles c = timing_.price(work_);
+  record.setup_cycles = c.setup;
+  record.fill_cycles = c.fill;
+  record.walk_cycles = c.walk;
+  record.cycles = c.total();
+  return record;
+}
+
+TriangleRecord ScanUnit::compute(const UnitTriangle& triangle, std::vector<Fragment>* fragments) {
   const Setup setup = setup_engine(triangle, design_, widths_, viewport_width_, viewport_height_);
   if (trace_) {
     trace_->setup = setup;
     trace_->writes.clear();
   }
+  work_.clear();
   TriangleRecord record;
   if (!setup.empty) {
+    work_.walked = true;
+    work_.columns = setup.major_count;
     switch (design_.kind) {
       case Design::Kind::ConstantDepth: record = run_constant_depth(setup, fragments); break;
       case Design::Kind::Divide: record = run_divide(setup, fragments); break;
@@ -37,14 +49,16 @@ TriangleRecord ScanUnit::run(const UnitTriangle& triangle, std::vector<Fragment>
       case Design::Kind::Affine: record = run_affine(triangle, setup, fragments); break;
     }
   }
-  record.setup_cycles = setup_cycles_;
-  record.cycles = record.setup_cycles + record.fill_cycles + record.walk_cycles;
   record.x_major = setup.x_major;
   record.flags |= setup.flags;
   return record;
 }
 
 namespace {
+
+int32_t span_pixels(const Span& span) {
+  return span.empty() ? 0 : static_cast<int32_t>(span.hi - span.lo + 1);
+}
 
 Fragment make_fragment(const Setup& s, const ColumnState& c, int64_t minor,
                        const CorrectedValue& value) {
@@ -63,7 +77,7 @@ TriangleRecord ScanUnit::run_constant_depth(const Setup& s, std::vector<Fragment
   TriangleRecord record;
   if (s.pixel_line_lo > s.pixel_line_hi) {
     // No pixel centre can be covered: the walker still scans the columns once.
-    record.walk_cycles = s.major_count;
+    work_.column_pixels.assign(static_cast<size_t>(s.major_count), 0);
     return record;
   }
   const int64_t guard = s.correction ? 1 : 0;  // correction neighbours above and below
@@ -73,7 +87,6 @@ TriangleRecord ScanUnit::run_constant_depth(const Setup& s, std::vector<Fragment
   for (int64_t band_lo = s.pixel_line_lo; band_lo <= s.pixel_line_hi; band_lo += lines_per_band) {
     const int64_t band_hi = std::min(s.pixel_line_hi, band_lo + lines_per_band - 1);
     ++record.bands;
-    // Fill: one line enters the reciprocal pipeline per cycle.
     table_.start_band(band_lo - guard);
     for (int64_t line = band_lo - guard; line <= band_hi + guard; ++line) {
       const TableEntry entry = fill_line(s, line, widths_);
@@ -82,14 +95,14 @@ TriangleRecord ScanUnit::run_constant_depth(const Setup& s, std::vector<Fragment
     }
     const int64_t band_lines = band_hi - band_lo + 1 + 2 * guard;
     record.lines += band_lines;
-    record.fill_cycles += band_lines + widths_.recip_latency;
+    work_.band_lines.push_back(band_lines);
 
-    // Walk: one cycle per column, plus one per pixel emitted in this band.
-    record.walk_cycles += s.major_count;
+    // Walk every column, emitting the pixels whose line is in this band.
     ColumnWalker walker(s, widths_);
     for (int64_t offset = 0; offset < s.major_count; ++offset, walker.advance()) {
       const ColumnState c = walker.column();
       const Span pixels = clip_to_band(s, c, band_lo, band_hi);
+      work_.column_pixels.push_back(static_cast<int32_t>(pixels.empty() ? 0 : pixels.hi - pixels.lo + 1));
       for (int64_t minor = pixels.lo; minor <= pixels.hi; ++minor) {
         const int64_t line = line_index(s, c, minor);
         const bool correct = s.correction && c.direction != 0;
@@ -103,7 +116,6 @@ TriangleRecord ScanUnit::run_constant_depth(const Setup& s, std::vector<Fragment
       }
     }
   }
-  record.walk_cycles += record.pixels;
   if (record.bands > 1) record.flags |= flag::kBanded;
   return record;
 }
@@ -113,6 +125,7 @@ TriangleRecord ScanUnit::run_divide(const Setup& s, std::vector<Fragment>* fragm
   ColumnWalker walker(s, widths_);
   for (int64_t offset = 0; offset < s.major_count; ++offset, walker.advance()) {
     const ColumnState c = walker.column();
+    work_.column_pixels.push_back(span_pixels(c.span));
     for (int64_t minor = c.span.lo; minor <= c.span.hi; ++minor) {
       const CorrectedValue value =
           divide_pixel(s, offset, minor - s.minor_lo, widths_, &record.flags);
@@ -121,73 +134,45 @@ TriangleRecord ScanUnit::run_divide(const Setup& s, std::vector<Fragment>* fragm
       ++record.pixels;
     }
   }
-  // One cycle per column and per pixel, plus draining the reciprocal pipeline.
-  record.walk_cycles = s.major_count + record.pixels + widths_.recip_latency;
   return record;
 }
 
 TriangleRecord ScanUnit::run_kim(const Setup& s, std::vector<Fragment>* fragments) {
   TriangleRecord record;
-  // Two stages overlap (rtl/kim_datapath.sv): A, the integer stage, and B, the
-  // fraction stage. Cycles are counted from the first column cycle (0). Each
-  // column takes one walker cycle; for a span with pixels A then divides for
-  // out_int cycles, and holds the first pixel's I, R in the cycle after. A
-  // hands a finished pixel to B in a cycle where B accepts one and starts the
-  // next pixel's steps in that same cycle, so pixel k is ready
-  // kim_integer_cycles(steps) cycles after pixel k-1's hand-off. B accepts a
-  // pixel kim_frac cycles after the last (iterative: one subtractor) or every
-  // cycle (pipelined) and offers its fragment kim_frac cycles after the
-  // hand-off. The walker's next column cycle follows the span's last hand-off;
-  // at the end the unit waits for B's last fragment.
-  const int64_t fraction_cycles = widths_.kim_frac;
-  const int64_t accept_gap = design_.pipelined ? 1 : fraction_cycles;
-  int64_t next_cycle = 0;      // the walker's next cycle
-  int64_t b_accepts = 0;       // the first cycle B can take a pixel
-  int64_t last_fragment = -1;  // the cycle B offers its last fragment
   ColumnWalker walker(s, widths_);
   for (int64_t offset = 0; offset < s.major_count; ++offset, walker.advance()) {
     const ColumnState c = walker.column();
-    const int64_t column_cycle = next_cycle++;
-    if (c.span.empty()) continue;
-    int64_t ready = column_cycle + 1 + widths_.out_int;  // after the span division
-    int64_t handoff = 0;
+    work_.column_pixels.push_back(span_pixels(c.span));
     KimPixel previous;
     for (int64_t minor = c.span.lo; minor <= c.span.hi; ++minor) {
       const bool first = minor == c.span.lo;
       const KimPixel p =
           kim_pixel(s, offset, minor - s.minor_lo, widths_, first ? nullptr : &previous, &record.flags);
-      if (!first) {
-        const int64_t steps = std::max(std::abs(p.integer_u - previous.integer_u),
-                                       std::abs(p.integer_v - previous.integer_v));
-        ready = handoff + kim_integer_cycles(steps, widths_);
-      }
+      // How far the integer stage steps to this pixel (timing.cpp prices it).
+      work_.kim_steps.push_back(first ? 0
+                                      : std::max(std::abs(p.integer_u - previous.integer_u),
+                                                 std::abs(p.integer_v - previous.integer_v)));
       previous = p;
-      handoff = std::max(ready, b_accepts);
-      b_accepts = handoff + accept_gap;
-      last_fragment = handoff + fraction_cycles;
       fragments->push_back(make_fragment(s, c, minor, p.value));
       record.flags |= fragments->back().flags;
       ++record.pixels;
     }
-    next_cycle = handoff + 1;
   }
-  record.walk_cycles = std::max(next_cycle, last_fragment + 1);
   return record;
 }
 
 TriangleRecord ScanUnit::run_affine(const UnitTriangle& triangle, const Setup& s,
                                     std::vector<Fragment>* fragments) {
   TriangleRecord record;
-  record.walk_cycles = s.major_count;
   const int64_t segment = design_.subdivision;
   const AffinePlanes planes = affine_setup(triangle, s, widths_);
   const fx::Format exact_format = affine_format(widths_);
   ColumnWalker walker(s, widths_);
   for (int64_t offset = 0; offset < s.major_count; ++offset, walker.advance()) {
     const ColumnState c = walker.column();
+    work_.column_pixels.push_back(span_pixels(c.span));
     if (c.span.empty()) continue;
     const int64_t length = c.span.hi - c.span.lo + 1;
-    record.walk_cycles += length;
     if (segment == 0) {
       for (int64_t minor = c.span.lo; minor <= c.span.hi; ++minor) {
         fragments->push_back(make_fragment(s, c, minor, affine_pixel(planes, offset, minor - s.minor_lo, widths_)));
@@ -196,12 +181,7 @@ TriangleRecord ScanUnit::run_affine(const UnitTriangle& triangle, const Setup& s
       record.pixels += length;
       continue;
     }
-    // Subdivided: the span waits recip_latency cycles for its first two end
-    // points (issued in the column cycle and the next); each later end point is
-    // issued as the segment before its own starts, so a segment after the
-    // first waits max(0, recip_latency - N) cycles for its end point
-    // (rtl/affine_sub_datapath.sv).
-    record.walk_cycles += widths_.recip_latency;
+    // Subdivided: an exact end point every N pixels, interpolated between.
     const auto exact_at = [&](int64_t minor) {
       return divide_uv(s, offset, minor - s.minor_lo, widths_, exact_format, &record.flags);
     };
@@ -209,7 +189,6 @@ TriangleRecord ScanUnit::run_affine(const UnitTriangle& triangle, const Setup& s
     for (int64_t first = c.span.lo; first <= c.span.hi; first += segment) {
       const int64_t last = std::min(first + segment, c.span.hi);
       const int64_t run = last - first;  // pixels from first to last end point
-      if (first != c.span.lo) record.walk_cycles += std::max<int64_t>(0, widths_.recip_latency - segment);
       const CorrectedValue end = run > 0 ? exact_at(last) : start;
       // Pixels first .. last-1 (and the span's final pixel itself).
       const int64_t stop = last == c.span.hi ? last : last - 1;

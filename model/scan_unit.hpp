@@ -1,7 +1,8 @@
-// The timing layer: runs triangles through the four blocks (setup engine,
-// scanline table, column walker, correction adder) and counts cycles exactly
-// as docs/microarchitecture.md describes. The RTL must match these counts
-// triangle by triangle.
+// The unit: runs triangles through the four blocks (setup engine, scanline
+// table, column walker, correction adder) or a per-pixel datapath, and
+// describes each triangle's work for the timing layer (timing.hpp), which
+// counts its cycles exactly as docs/microarchitecture.md describes. The RTL
+// must match those counts triangle by triangle.
 #pragma once
 
 #include <cstdint>
@@ -10,6 +11,7 @@
 #include "design.hpp"
 #include "scanline_table.hpp"
 #include "setup_engine.hpp"
+#include "timing.hpp"
 #include "triangle.hpp"
 #include "widths.hpp"
 
@@ -22,7 +24,7 @@ struct Fragment {
 };
 
 struct TriangleRecord {
-  int64_t cycles = 0;  // setup + fill + walk
+  int64_t cycles = 0;  // setup + fill + walk (the timing layer's; 0 from ScanUnit::compute)
   int64_t setup_cycles = 0, fill_cycles = 0, walk_cycles = 0;
   int64_t lines = 0;   // table entries filled, all bands
   int64_t bands = 0;
@@ -47,8 +49,14 @@ class ScanUnit {
  public:
   ScanUnit(const Design& design, const Widths& widths, int viewport_width, int viewport_height);
 
-  // Appends the triangle's fragments, in emission order, to *fragments.
+  // Appends the triangle's fragments, in emission order, to *fragments, and
+  // returns its record with the cycles of the timing layer.
   TriangleRecord run(const UnitTriangle& triangle, std::vector<Fragment>* fragments);
+  // The same values without the timing layer: the record's cycle fields stay
+  // 0. work() describes what the triangle asked of the hardware.
+  TriangleRecord compute(const UnitTriangle& triangle, std::vector<Fragment>* fragments);
+  const TriangleWork& work() const { return work_; }
+  const UnitTiming& timing() const { return timing_; }
 
   const ScanlineTable& table() const { return table_; }
   // When set, run() records the setup and every table write of the triangle.
@@ -66,7 +74,8 @@ class ScanUnit {
   Widths widths_;
   int viewport_width_, viewport_height_;
   ScanlineTable table_;
-  int64_t setup_cycles_;  // from the setup engine's structure (derived_widths.cpp)
+  UnitTiming timing_;
+  TriangleWork work_;  // of the last triangle
   BlockTrace* trace_ = nullptr;
 };
 

@@ -351,5 +351,53 @@ TEST(UnitBehaviour, AffineSubdivisionStallsWhenSegmentsAreShorterThanTheDivider)
   EXPECT_EQ(r.cycles, kSetup + 1 + pixels + 12 + stalls);
 }
 
+TEST(UnitBehaviour, TimingLayerPricesWorkAndComputeSkipsIt) {
+  // The timing layer alone, on work written by hand: two bands of 7 and 5
+  // lines over 4 columns holding 3 + 0 + 2 + 1 and 1 + 1 + 0 + 0 pixels.
+  Widths w;
+  w.recip_latency = 3;
+  const int64_t kSetup = derive(w).setup_cycles;
+  TriangleWork work;
+  work.walked = true;
+  work.columns = 4;
+  work.band_lines = {7, 5};
+  work.column_pixels = {3, 0, 2, 1, 1, 1, 0, 0};
+  const TriangleCycles cd = UnitTiming(find_design("cd-linear"), w).price(work);
+  EXPECT_EQ(cd.setup, kSetup);
+  EXPECT_EQ(cd.fill, (7 + 3) + (5 + 3));
+  EXPECT_EQ(cd.walk, 2 * 4 + 8);
+  // divide: one pass, drained once.
+  work.band_lines.clear();
+  work.column_pixels = {3, 0, 2, 1};
+  EXPECT_EQ(UnitTiming(find_design("divide"), w).price(work).total(), kSetup + 4 + 6 + 3);
+  // affine-sub8 with a 12-cycle divider: spans of 1, 9, 10 and 17 pixels have
+  // 1, 1, 2 and 2 segments; each waits 12 cycles, each later segment 4 more.
+  w.recip_latency = 12;
+  work.column_pixels = {1, 9, 10, 17};
+  EXPECT_EQ(UnitTiming(find_design("affine-sub8"), w).price(work).walk, 4 + 37 + 4 * 12 + 2 * 4);
+  // A triangle that ends after setup.
+  EXPECT_EQ(UnitTiming(find_design("kim-pipe"), w).price(TriangleWork{}).total(), kSetup);
+
+  // ScanUnit::compute gives run's values without cycles.
+  const ScreenTriangle s = testing::screen_triangle(
+      {{{{3.2, 4.7, 2.0, 10.0, 20.0}}, {{60.4, 10.1, 7.0, 90.5, 61.25}}, {{20.3, 50.9, 4.0, -30.75, 81.0}}}});
+  const UnitTriangle t = to_unit(s, w, 0);
+  for (const Design& d : all_designs()) {
+    ScanUnit unit(d, w, 64, 64);
+    std::vector<Fragment> computed, ran;
+    const TriangleRecord c = unit.compute(t, &computed);
+    const TriangleWork work_of_compute = unit.work();
+    const TriangleRecord r = unit.run(t, &ran);
+    ASSERT_EQ(computed.size(), ran.size()) << d.name;
+    EXPECT_EQ(c.cycles, 0) << d.name;
+    EXPECT_EQ(r.cycles, unit.timing().price(work_of_compute).total()) << d.name;
+    EXPECT_EQ(c.pixels, r.pixels) << d.name;
+    EXPECT_EQ(c.flags, r.flags) << d.name;
+    int64_t pixels = 0;
+    for (const int32_t n : work_of_compute.column_pixels) pixels += n;
+    EXPECT_EQ(pixels, r.pixels) << d.name;
+  }
+}
+
 }  // namespace
 }  // namespace cdsim

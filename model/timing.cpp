@@ -1,0 +1,92 @@
+#include "timing.hpp"
+
+#include <algorithm>
+#include <numeric>
+
+#include "derived_widths.hpp"
+#include "kim_datapath.hpp"
+
+namespace cdsim {
+
+UnitTiming::UnitTiming(const Design& design, const Widths& widths)
+    : design_(design), widths_(widths), setup_cycles_(derive(widths).setup_cycles) {}
+
+TriangleCycles UnitTiming::price(const TriangleWork& work) const {
+  TriangleCycles c;
+  c.setup = setup_cycles_;
+  if (!work.walked) return c;
+  const int64_t pixels = std::accumulate(work.column_pixels.begin(), work.column_pixels.end(), int64_t{0});
+  switch (design_.kind) {
+    case Design::Kind::ConstantDepth: {
+      // Fill: one line per cycle into the reciprocal pipeline, drained per band.
+      for (const int64_t lines : work.band_lines) c.fill += lines + widths_.recip_latency;
+      // Walk: one cycle per column of every pass, one per pixel.
+      const auto passes = static_cast<int64_t>(std::max<size_t>(1, work.band_lines.size()));
+      c.walk = passes * work.columns + pixels;
+      break;
+    }
+    case Design::Kind::Divide:
+      // One cycle per column and per pixel, plus draining the reciprocal pipeline.
+      c.walk = work.columns + pixels + widths_.recip_latency;
+      break;
+    case Design::Kind::Kim: c.walk = walk_kim(work); break;
+    case Design::Kind::Affine: c.walk = walk_affine(work); break;
+  }
+  return c;
+}
+
+// Two stages overlap (rtl/kim_datapath.sv): A, the integer stage, and B, the
+// fraction stage. Cycles are counted from the first column cycle (0). Each
+// column takes one walker cycle; for a span with pixels A then divides for
+// out_int cycles, and holds the first pixel's I, R in the cycle after. A hands
+// a finished pixel to B in a cycle where B accepts one and starts the next
+// pixel's steps in that same cycle, so pixel k is ready kim_integer_cycles(steps)
+// cycles after pixel k-1's hand-off. B accepts a pixel kim_frac cycles after
+// the last (iterative: one subtractor) or every cycle (pipelined) and offers
+// its fragment kim_frac cycles after the hand-off. The walker's next column
+// cycle follows the span's last hand-off; at the end the unit waits for B's
+// last fragment.
+int64_t UnitTiming::walk_kim(const TriangleWork& work) const {
+  const int64_t fraction_cycles = widths_.kim_frac;
+  const int64_t accept_gap = design_.pipelined ? 1 : fraction_cycles;
+  int64_t next_cycle = 0;      // the walker's next cycle
+  int64_t b_accepts = 0;       // the first cycle B can take a pixel
+  int64_t last_fragment = -1;  // the cycle B offers its last fragment
+  size_t pixel = 0;
+  for (const int32_t span : work.column_pixels) {
+    const int64_t column_cycle = next_cycle++;
+    if (span == 0) continue;
+    int64_t ready = column_cycle + 1 + widths_.out_int;  // after the span division
+    int64_t handoff = 0;
+    for (int32_t i = 0; i < span; ++i, ++pixel) {
+      if (i > 0) ready = handoff + kim_integer_cycles(work.kim_steps.at(pixel), widths_);
+      handoff = std::max(ready, b_accepts);
+      b_accepts = handoff + accept_gap;
+      last_fragment = handoff + fraction_cycles;
+    }
+    next_cycle = handoff + 1;
+  }
+  return std::max(next_cycle, last_fragment + 1);
+}
+
+// One cycle per column and per pixel. Subdivided (affine-subN): a span waits
+// recip_latency cycles for its first two end points (issued in the column
+// cycle and the next); each later end point is issued as the segment before
+// its own starts, so a segment after the first waits
+// max(0, recip_latency - N) cycles for its end point (rtl/affine_sub_datapath.sv).
+int64_t UnitTiming::walk_affine(const TriangleWork& work) const {
+  const int64_t segment = design_.subdivision;
+  int64_t cycles = work.columns;
+  for (const int32_t span : work.column_pixels) {
+    if (span == 0) continue;
+    cycles += span;
+    if (segment == 0) continue;
+    // Segments of the span: the first ends min(N, span - 1) pixels on, each
+    // later one N pixels on, the last at the span's final pixel.
+    const int64_t segments = std::max<int64_t>(1, (span - 1 + segment - 1) / segment);
+    cycles += widths_.recip_latency + (segments - 1) * std::max<int64_t>(0, widths_.recip_latency - segment);
+  }
+  return cycles;
+}
+
+}  // namespace cdsim
