@@ -398,7 +398,7 @@ int merge_regressions(const MergeOptions& options) {
     parts.push_back(std::move(j));
   }
   static const std::vector<std::string> summed = {
-      "triangles", "fragments", "mismatches", "hangs", "rtl_cycles", "model_cycles", "setups_compared",
+      "triangles", "fragments", "mismatches", "hangs", "rtl_cycles", "model_cycles", "clocks", "model_clocks", "setups_compared",
       "table_writes_compared", "y_major_triangles"};
   const auto header = [&](nlohmann::json j) {
     for (const std::string& key : summed) j.erase(key);

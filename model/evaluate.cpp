@@ -53,8 +53,9 @@ DesignResult evaluate(const PreparedScene& prepared, const Design& design, const
     fragments.clear();
     const TriangleRecord r = unit.run(prepared.unit[i], &fragments);
     result.pixels += r.pixels;
-    result.cycles += r.cycles;
+    result.cycles += r.cycles + r.handshake_cycles;
     result.setup_cycles += r.setup_cycles;
+    result.handshake_cycles += r.handshake_cycles;
     result.fill_cycles += r.fill_cycles;
     result.walk_cycles += r.walk_cycles;
     result.lines += r.lines;

@@ -27,6 +27,7 @@ TriangleRecord ScanUnit::run(const UnitTriangle& triangle, std::vector<Fragment>
   record.setup_cycles = c.setup;
   record.fill_cycles = c.fill;
   record.walk_cycles = c.walk;
+  record.handshake_cycles = c.handshake;
   record.cycles = c.total();
   return record;
 }

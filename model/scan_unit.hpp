@@ -26,6 +26,7 @@ struct Fragment {
 struct TriangleRecord {
   int64_t cycles = 0;  // setup + fill + walk (the timing layer's; 0 from ScanUnit::compute)
   int64_t setup_cycles = 0, fill_cycles = 0, walk_cycles = 0;
+  int64_t handshake_cycles = 0;  // accept and record, outside `cycles` (timing.hpp)
   int64_t lines = 0;   // table entries filled, all bands
   int64_t bands = 0;
   int64_t pixels = 0;

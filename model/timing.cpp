@@ -14,6 +14,7 @@ UnitTiming::UnitTiming(const Design& design, const Widths& widths)
 TriangleCycles UnitTiming::price(const TriangleWork& work) const {
   TriangleCycles c;
   c.setup = setup_cycles_;
+  c.handshake = kHandshakeCycles;
   if (!work.walked) return c;
   const int64_t pixels = std::accumulate(work.column_pixels.begin(), work.column_pixels.end(), int64_t{0});
   switch (design_.kind) {

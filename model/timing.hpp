@@ -45,7 +45,13 @@ struct TriangleWork {
 
 struct TriangleCycles {
   int64_t setup = 0, fill = 0, walk = 0;
+  // The clocks of the triangle's handshakes, outside its record's count: the
+  // cycle the unit accepts it (IDLE) and the cycle it offers the record.
+  int64_t handshake = 0;
+  // What the RTL's record counts: setup + fill + walk.
   int64_t total() const { return setup + fill + walk; }
+  // Every clock the triangle holds the unit, handshakes included.
+  int64_t clocks() const { return total() + handshake; }
 };
 
 class UnitTiming {
@@ -53,11 +59,16 @@ class UnitTiming {
   UnitTiming(const Design& design, const Widths& widths);
 
   // The cycles of one triangle, from the cycle after it is accepted to the
-  // cycle before its record is offered; the unit takes triangles one after
-  // another, so a scene's cycles are the sum of its triangles'.
+  // cycle before its record is offered, and its handshake cycles. The unit
+  // takes triangles one after another, so a scene's clocks, from the first
+  // triangle accepted to the last record delivered, are the sum of its
+  // triangles' clocks() (plus the stalls of back-pressure).
   TriangleCycles price(const TriangleWork& work) const;
 
   int64_t setup_cycles() const { return setup_cycles_; }
+  // Accept and record: the unit accepts a triangle only in IDLE, the cycle
+  // after the last one's record (rtl/cd_scan_unit.sv).
+  static constexpr int64_t kHandshakeCycles = 2;
 
  private:
   int64_t walk_kim(const TriangleWork& work) const;

@@ -36,6 +36,10 @@ struct BenchSummary {
   std::vector<std::pair<std::string, int64_t>> flags;  // triangles with each flag
   std::vector<uint64_t> failed;  // numbers of the triangles that failed
   int64_t clock_cycles = 0;
+  // Every clock from the first triangle accepted to the last record delivered,
+  // as the bench counted them, and as the model predicts them: its clocks
+  // (cycles and handshakes) plus the stalls of back-pressure.
+  int64_t clocks = 0, model_clocks = 0;
   double seconds = 0;
 };
 
@@ -130,6 +134,10 @@ class Bench : public sc_core::sc_module {
   size_t failed_index() const { return failed_index_; }
   bool hung() const { return hung_; }
   int64_t clock_cycles() const { return clock_cycles_; }
+  // From the clock that accepted the first triangle to the one that delivered
+  // the last record, both included.
+  int64_t busy_span() const { return last_record_clock_ < 0 ? 0 : last_record_clock_ - first_accept_clock_ + 1; }
+  int64_t total_stalls() const { return total_stalls_; }
   size_t triangles_done() const { return triangles_done_; }
 
   sc_core::sc_clock clk;
@@ -205,6 +213,10 @@ class Bench : public sc_core::sc_module {
       r.pixels = rec_pixels.read();
       r.flags = rec_flags.read();
       if (checking_ && !scoreboard_.record(r, stalls_)) fail();
+      if (!replay_) {
+        last_record_clock_ = clock_cycles_;
+        total_stalls_ += stalls_;
+      }
       in_flight_ = false;
       ++triangles_done_;
       if (options_.on_record && !replay_) options_.on_record(triangles_done_);
@@ -246,6 +258,7 @@ class Bench : public sc_core::sc_module {
       // from a generator seeded by the triangle, so that a replay is identical.
       presenting_ = false;
       in_flight_ = true;
+      if (first_accept_clock_ < 0 && !replay_) first_accept_clock_ = clock_cycles_;
       stalls_ = 0;
       busy_cycles_ = 0;
       cycle_limit_ = options_.cycle_limits.at(current_);
@@ -286,6 +299,7 @@ class Bench : public sc_core::sc_module {
   bool replay_ = false, hung_ = false;
   int reset_cycles_ = 3;
   int64_t stalls_ = 0, clock_cycles_ = 0, busy_cycles_ = 0, cycle_limit_ = 0;
+  int64_t first_accept_clock_ = -1, last_record_clock_ = -1, total_stalls_ = 0;
   std::mt19937_64 stall_rng_{0};
   std::uniform_real_distribution<double> stall_dist_{0.0, 1.0};
 
@@ -310,7 +324,18 @@ int run_bench(const std::vector<Job>& jobs, const Widths& widths, const BenchOpt
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const int64_t clock_cycles = bench.clock_cycles();
   const int64_t triangles = static_cast<int64_t>(bench.triangles_done());
-  const int64_t mismatches = scoreboard.mismatches() + (bench.hung() ? 1 : 0);
+  // Every clock counted: from the first accept to the last record, the unit
+  // spends exactly the model's clocks plus the stalls (when every triangle
+  // matched; a failing one is drained unchecked).
+  const int64_t clocks = bench.busy_span();
+  const int64_t model_clocks = scoreboard.model_clocks() + bench.total_stalls();
+  const bool clocks_differ = !bench.failed() && !bench.hung() && clocks != model_clocks;
+  if (clocks_differ)
+    std::cout << fmt::format(
+        "MISMATCH clocks (seed {}): {} clocks from the first triangle accepted to the last record "
+        "delivered; the model's cycles and handshakes plus {} stalls give {}\n",
+        options.seed, clocks, bench.total_stalls(), model_clocks);
+  const int64_t mismatches = scoreboard.mismatches() + (bench.hung() ? 1 : 0) + (clocks_differ ? 1 : 0);
 
   if (bench.failed() && !bench.hung()) {
     // Re-run the failing triangle with the waveform on.
@@ -336,6 +361,8 @@ int run_bench(const std::vector<Job>& jobs, const Widths& widths, const BenchOpt
       "{:.0f} cycles/s\n",
       triangles, scoreboard.fragments_compared(), mismatches, scoreboard.rtl_cycles(),
       scoreboard.model_cycles(), seconds > 0 ? double(clock_cycles) / seconds : 0.0);
+  std::cout << fmt::format("clocks from the first accept to the last record: {} (model {} + {} stalls)\n",
+                           clocks, scoreboard.model_clocks(), bench.total_stalls());
   std::cout << fmt::format("({} clock cycles simulated in {:.2f} s)\n", clock_cycles, seconds);
   if (BenchSummary* s = options.summary) {
     s->triangles = triangles;
@@ -350,6 +377,8 @@ int run_bench(const std::vector<Job>& jobs, const Widths& widths, const BenchOpt
     s->flags = scoreboard.flag_counts();
     if (bench.failed()) s->failed.push_back(jobs[bench.failed_index()].number);
     s->clock_cycles = clock_cycles;
+    s->clocks = clocks;
+    s->model_clocks = model_clocks;
     s->seconds = seconds;
   }
   return mismatches == 0 ? 0 : 1;

@@ -304,7 +304,8 @@ int regress(const Widths* given) {
         {"design", options.design}, {"backpressure", options.backpressure},
         {"triangles", summary.triangles}, {"fragments", summary.fragments},
         {"mismatches", summary.mismatches}, {"hangs", summary.hangs}, {"rtl_cycles", summary.rtl_cycles},
-        {"model_cycles", summary.model_cycles}, {"setups_compared", summary.setups},
+        {"model_cycles", summary.model_cycles}, {"clocks", summary.clocks},
+        {"model_clocks", summary.model_clocks}, {"setups_compared", summary.setups},
         {"table_writes_compared", summary.table_writes}, {"y_major_triangles", summary.y_major},
         {"flags", flags}, {"failed_triangles", summary.failed}};
     if (!shard.whole()) j["shard"] = {{"index", shard.index}, {"count", shard.count}};

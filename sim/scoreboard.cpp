@@ -116,6 +116,7 @@ bool Scoreboard::record(const RtlRecord& a, int64_t stall_cycles) {
     if (e.flags & (1u << bit)) ++flagged_[static_cast<size_t>(bit)];
   if (!e.x_major) ++y_major_;
   model_cycles_ += e.cycles;
+  model_clocks_ += e.cycles + e.handshake_cycles;
   rtl_cycles_ += a.cycles;
   const std::string where = "record";
   if (!setup_seen_) return fail(where, "setup results observed", 1, 0);

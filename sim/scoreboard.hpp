@@ -73,6 +73,8 @@ class Scoreboard {
   int64_t writes_compared() const { return writes_compared_; }
   int64_t model_cycles() const { return model_cycles_; }
   int64_t rtl_cycles() const { return rtl_cycles_; }
+  // The model's clocks of the triangles recorded: cycles plus handshakes.
+  int64_t model_clocks() const { return model_clocks_; }
   int64_t mismatches() const { return mismatches_; }
   // Triangles whose record raised each flag, and banded / y-major triangles:
   // evidence that a width configuration really exercises its corners.
@@ -97,7 +99,7 @@ class Scoreboard {
   TriangleRecord expected_record_;
   size_t next_ = 0;
   int64_t setups_compared_ = 0, writes_compared_ = 0;
-  int64_t fragments_compared_ = 0, model_cycles_ = 0, rtl_cycles_ = 0, mismatches_ = 0;
+  int64_t fragments_compared_ = 0, model_cycles_ = 0, model_clocks_ = 0, rtl_cycles_ = 0, mismatches_ = 0;
   std::string mismatch_;
   std::array<int64_t, flag::kCount> flagged_{};
   int64_t y_major_ = 0;

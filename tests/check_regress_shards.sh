@@ -19,12 +19,14 @@ failures = []
 def expect(cond, what):
     print(("ok   " if cond else "FAIL ") + what)
     if not cond: failures.append(what)
-for key in ["triangles", "fragments", "mismatches", "hangs", "rtl_cycles", "model_cycles", "setups_compared",
-            "table_writes_compared", "y_major_triangles", "flags", "source", "widths", "seed"]:
+for key in ["triangles", "fragments", "mismatches", "hangs", "rtl_cycles", "model_cycles", "clocks", "model_clocks",
+            "setups_compared", "table_writes_compared", "y_major_triangles", "flags", "source", "widths", "seed"]:
     expect(merged[key] == whole[key], f"merged {key} = the whole run's ({whole[key]})")
 expect(all(0 < s["triangles"] < whole["triangles"] for s in shards), "each shard runs part of the triangles")
 expect(whole["mismatches"] == 0 and whole["fragments"] > 10000, "the whole run compared its fragments exactly")
 expect(whole["rtl_cycles"] > whole["model_cycles"], "back-pressure stalled the RTL")
+expect(whole["clocks"] == whole["model_clocks"] == whole["rtl_cycles"] + 2 * whole["triangles"],
+       "every clock counted: the cycles of the records plus 2 handshakes a triangle")
 sys.exit(1 if failures else 0)
 PY
 # A shard missing is refused.

@@ -25,6 +25,6 @@ import json, sys
 m = json.load(open(sys.argv[1]))
 print(f"{m['triangles']} triangles in {sys.argv[3]} shards, {m['fragments']} fragments, "
       f"{m['mismatches']} mismatches, {m['hangs']} hangs, RTL cycles {m['rtl_cycles']}, "
-      f"model cycles {m['model_cycles']}; wall {sys.argv[2]} s")
+      f"model cycles {m['model_cycles']}, clocks {m['clocks']} (model {m['model_clocks']}); wall {sys.argv[2]} s")
 PY
 exit $status
