@@ -287,29 +287,32 @@ AreaReport estimate_area(const Design& design, const Widths& widths, const AreaO
   static std::mutex mutex;
   static std::map<std::string, AreaModel> models;
   const std::string path = options.model_path.empty() ? default_area_model_path() : options.model_path;
-  AreaModel model;
+  // Loaded once per path and never changed or erased: a std::map keeps the
+  // entry where it is, so every thread reads it without a copy.
+  const AreaModel* model = nullptr;
   {
     std::lock_guard<std::mutex> guard(mutex);
     if (!models.count(path)) {
-      models[path] = load_area_model(path);
-      if (models[path].liberty != liberty_name(options.liberty))
-        throw std::runtime_error(fmt::format("{}: calibrated on {}, not {}", path, models[path].liberty,
-                                             liberty_name(options.liberty)));
-      if (models[path].rtl_hash != rtl_sources_hash())
+      AreaModel loaded = load_area_model(path);
+      if (loaded.rtl_hash != rtl_sources_hash())
         std::cerr << fmt::format(
             "area: warning: {} was calibrated on other RTL sources; re-run cdsim area-model\n", path);
+      models.emplace(path, std::move(loaded));
     }
-    model = models.at(path);
+    model = &models.at(path);
   }
+  if (model->liberty != liberty_name(options.liberty))  // on every call: the library can differ
+    throw std::runtime_error(
+        fmt::format("{}: calibrated on {}, not {}", path, model->liberty, liberty_name(options.liberty)));
   const UnitConfig config = prepare_unit(design, widths, options);
   const CoarseResult coarse = coarse_pass(config);
-  const auto unit = predicted_stat(coarse.unit, model, "unit");
+  const auto unit = predicted_stat(coarse.unit, *model, "unit");
   const nlohmann::json estimated = {
       {"seconds", coarse.seconds},
       {"blocks", block_areas(unit, config, path)},
       {"flop_table_lines", config.flop_lines},
       {"flop_table_area_um2",
-       config.has_table ? table_area(predicted_stat(coarse.table, model, "flip-flop table")) : 0.0}};
+       config.has_table ? table_area(predicted_stat(coarse.table, *model, "flip-flop table")) : 0.0}};
   AreaReport report = area_report(design, widths, config, estimated, options);
   report.estimated = true;
   report.log_path = path;

@@ -103,7 +103,7 @@ TriangleRecord ScanUnit::run_constant_depth(const Setup& s, std::vector<Fragment
     for (int64_t offset = 0; offset < s.major_count; ++offset, walker.advance()) {
       const ColumnState c = walker.column();
       const Span pixels = clip_to_band(s, c, band_lo, band_hi);
-      work_.column_pixels.push_back(static_cast<int32_t>(pixels.empty() ? 0 : pixels.hi - pixels.lo + 1));
+      work_.column_pixels.push_back(span_pixels(pixels));
       for (int64_t minor = pixels.lo; minor <= pixels.hi; ++minor) {
         const int64_t line = line_index(s, c, minor);
         const bool correct = s.correction && c.direction != 0;
