@@ -53,11 +53,11 @@ DesignResult evaluate(const PreparedScene& prepared, const Design& design, const
     fragments.clear();
     const TriangleRecord r = unit.run(prepared.unit[i], &fragments);
     result.pixels += r.pixels;
-    result.cycles += r.cycles + r.handshake_cycles;
+    result.cycles += r.cycles;
     result.setup_cycles += r.setup_cycles;
-    result.handshake_cycles += r.handshake_cycles;
     result.fill_cycles += r.fill_cycles;
     result.walk_cycles += r.walk_cycles;
+    result.record_cycles += r.record_cycles;
     result.lines += r.lines;
     result.banded_triangles += r.bands > 1;
     (r.x_major ? result.x_major_triangles : result.y_major_triangles) += 1;

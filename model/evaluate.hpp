@@ -39,8 +39,9 @@ struct DesignResult {
   Design design;
   int64_t triangles = 0, pixels = 0;
   // The scene's clocks, from the first triangle accepted to the last record
-  // delivered (no back-pressure): setup + fill + walk + handshake.
-  int64_t cycles = 0, setup_cycles = 0, fill_cycles = 0, walk_cycles = 0, handshake_cycles = 0;
+  // delivered, both included (no back-pressure): the sum of the triangles'
+  // clocks (timing.hpp), which add up as setup-bound + fill-bound + walk + record.
+  int64_t cycles = 0, setup_cycles = 0, fill_cycles = 0, walk_cycles = 0, record_cycles = 0;
   int64_t lines = 0, banded_triangles = 0, x_major_triangles = 0, y_major_triangles = 0;
   int table_depth = 0, table_word_bits = 0;
   int64_t table_bits = 0, table_high_water = 0;

@@ -19,15 +19,16 @@ ScanUnit::ScanUnit(const Design& design, const Widths& widths, int viewport_widt
       viewport_width_(viewport_width),
       viewport_height_(viewport_height),
       table_(widths.table_depth * design.density),
-      timing_(design, widths) {}
+      timing_(design, widths),
+      schedule_(widths) {}
 
 TriangleRecord ScanUnit::run(const UnitTriangle& triangle, std::vector<Fragment>* fragments) {
   TriangleRecord record = compute(triangle, fragments);
-  const TriangleCycles c = timing_.price(work_);
+  const TriangleCycles c = schedule_.next(timing_.phases(work_));
   record.setup_cycles = c.setup;
   record.fill_cycles = c.fill;
   record.walk_cycles = c.walk;
-  record.handshake_cycles = c.handshake;
+  record.record_cycles = c.record;
   record.cycles = c.total();
   return record;
 }

@@ -1,8 +1,8 @@
 // The unit: runs triangles through the four blocks (setup engine, scanline
 // table, column walker, correction adder) or a per-pixel datapath, and
 // describes each triangle's work for the timing layer (timing.hpp), which
-// counts its cycles exactly as docs/microarchitecture.md describes. The RTL
-// must match those counts triangle by triangle.
+// places it on the unit's clock exactly as docs/microarchitecture.md
+// describes. The RTL must match those counts triangle by triangle.
 #pragma once
 
 #include <cstdint>
@@ -24,9 +24,11 @@ struct Fragment {
 };
 
 struct TriangleRecord {
-  int64_t cycles = 0;  // setup + fill + walk (the timing layer's; 0 from ScanUnit::compute)
-  int64_t setup_cycles = 0, fill_cycles = 0, walk_cycles = 0;
-  int64_t handshake_cycles = 0;  // accept and record, outside `cycles` (timing.hpp)
+  // The triangle's clocks on the unit's schedule (timing.hpp): from the cycle
+  // after the previous triangle's record to its own record, both included;
+  // setup-bound + fill-bound + walk + record. 0 from ScanUnit::compute.
+  int64_t cycles = 0;
+  int64_t setup_cycles = 0, fill_cycles = 0, walk_cycles = 0, record_cycles = 0;
   int64_t lines = 0;   // table entries filled, all bands
   int64_t bands = 0;
   int64_t pixels = 0;
@@ -51,13 +53,19 @@ class ScanUnit {
   ScanUnit(const Design& design, const Widths& widths, int viewport_width, int viewport_height);
 
   // Appends the triangle's fragments, in emission order, to *fragments, and
-  // returns its record with the cycles of the timing layer.
+  // returns its record with its clocks as the next triangle of this unit's
+  // schedule (the first run() of a ScanUnit is accepted in cycle 0).
   TriangleRecord run(const UnitTriangle& triangle, std::vector<Fragment>* fragments);
   // The same values without the timing layer: the record's cycle fields stay
-  // 0. work() describes what the triangle asked of the hardware.
+  // 0 and the schedule does not move. work() describes what the triangle asked
+  // of the hardware, phases() its phases.
   TriangleRecord compute(const UnitTriangle& triangle, std::vector<Fragment>* fragments);
   const TriangleWork& work() const { return work_; }
+  TrianglePhases phases() const { return timing_.phases(work_); }
   const UnitTiming& timing() const { return timing_; }
+  const UnitSchedule& schedule() const { return schedule_; }
+  // Starts a new stream: the next run() is accepted in cycle 0.
+  void reset_schedule() { schedule_.reset(); }
 
   const ScanlineTable& table() const { return table_; }
   // When set, run() records the setup and every table write of the triangle.
@@ -76,6 +84,7 @@ class ScanUnit {
   int viewport_width_, viewport_height_;
   ScanlineTable table_;
   UnitTiming timing_;
+  UnitSchedule schedule_;
   TriangleWork work_;  // of the last triangle
   BlockTrace* trace_ = nullptr;
 };

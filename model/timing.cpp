@@ -1,6 +1,7 @@
 #include "timing.hpp"
 
 #include <algorithm>
+#include <cstddef>
 #include <numeric>
 
 #include "derived_widths.hpp"
@@ -11,28 +12,98 @@ namespace cdsim {
 UnitTiming::UnitTiming(const Design& design, const Widths& widths)
     : design_(design), widths_(widths), setup_cycles_(derive(widths).setup_cycles) {}
 
-TriangleCycles UnitTiming::price(const TriangleWork& work) const {
-  TriangleCycles c;
-  c.setup = setup_cycles_;
-  c.handshake = kHandshakeCycles;
-  if (!work.walked) return c;
-  const int64_t pixels = std::accumulate(work.column_pixels.begin(), work.column_pixels.end(), int64_t{0});
+TrianglePhases UnitTiming::phases(const TriangleWork& work) const {
+  TrianglePhases p;
+  if (!work.walked) return p;
   switch (design_.kind) {
     case Design::Kind::ConstantDepth: {
+      if (work.band_lines.empty()) {
+        // No possible pixel line: the walker still passes over the columns once.
+        p.kind = TrianglePhases::Kind::Scan;
+        p.scan = work.columns;
+        break;
+      }
       // Fill: one line per cycle into the reciprocal pipeline, drained per band.
-      for (const int64_t lines : work.band_lines) c.fill += lines + widths_.recip_latency;
-      // Walk: one cycle per column of every pass, one per pixel.
-      const auto passes = static_cast<int64_t>(std::max<size_t>(1, work.band_lines.size()));
-      c.walk = passes * work.columns + pixels;
+      // Walk: one cycle per column of the band's pass, one per pixel.
+      p.kind = TrianglePhases::Kind::Bands;
+      const auto columns = static_cast<size_t>(work.columns);
+      for (size_t band = 0; band < work.band_lines.size(); ++band) {
+        const auto pass = work.column_pixels.begin() + static_cast<std::ptrdiff_t>(band * columns);
+        const int64_t pixels = std::accumulate(pass, pass + static_cast<std::ptrdiff_t>(columns), int64_t{0});
+        p.bands.push_back({work.band_lines[band] + widths_.recip_latency, work.columns + pixels});
+      }
       break;
     }
-    case Design::Kind::Divide:
+    case Design::Kind::Divide: {
       // One cycle per column and per pixel, plus draining the reciprocal pipeline.
-      c.walk = work.columns + pixels + widths_.recip_latency;
+      const int64_t pixels = std::accumulate(work.column_pixels.begin(), work.column_pixels.end(), int64_t{0});
+      p.kind = TrianglePhases::Kind::Walk;
+      p.walk = work.columns + pixels + widths_.recip_latency;
       break;
-    case Design::Kind::Kim: c.walk = walk_kim(work); break;
-    case Design::Kind::Affine: c.walk = walk_affine(work); break;
+    }
+    case Design::Kind::Kim:
+      p.kind = TrianglePhases::Kind::Walk;
+      p.walk = walk_kim(work);
+      break;
+    case Design::Kind::Affine:
+      p.kind = TrianglePhases::Kind::Walk;
+      p.walk = walk_affine(work);
+      break;
   }
+  return p;
+}
+
+UnitSchedule::UnitSchedule(const Widths& widths)
+    : setup_cycles_(derive(widths).setup_cycles), fifo_depth_(widths.setup_fifo_depth) {}
+
+void UnitSchedule::reset() {
+  front_free_ = 0;
+  back_free_ = 0;
+  started_ = false;
+  last_ = ScheduledTriangle{};
+}
+
+TriangleCycles UnitSchedule::next(const TrianglePhases& phases) {
+  int64_t accept = front_free_;
+  if (fifo_depth_ == 0 && started_) accept = std::max(accept, last_.record + 1);
+  const int64_t setup_done = accept + setup_cycles_;  // the last setup cycle: offered from here
+  const int64_t taken = std::max(setup_done, back_free_);
+  TriangleCycles c;
+  int64_t record = taken + 1;
+  int64_t leaves_front = taken;  // the cycle the front end is free for the next triangle
+  switch (phases.kind) {
+    case TrianglePhases::Kind::Empty: break;
+    case TrianglePhases::Kind::Scan:
+      c.walk = phases.scan;
+      record = taken + phases.scan + 1;
+      break;
+    case TrianglePhases::Kind::Walk:
+      // Overlapped, the walker loads the held setup results in one cycle of its own.
+      c.walk = phases.walk + (fifo_depth_ > 0 ? 1 : 0);
+      record = taken + c.walk + 1;
+      break;
+    case TrianglePhases::Kind::Bands: {
+      // Each band fills in the cycles after `cycle`, then walks; the next band's
+      // fill waits for this band's walk, which reads the table.
+      int64_t cycle = taken;
+      for (const TrianglePhases::Band& band : phases.bands) {
+        leaves_front = cycle + band.fill;
+        cycle += band.fill + band.walk;
+        c.fill += band.fill;
+        c.walk += band.walk;
+      }
+      record = cycle + 1;
+      break;
+    }
+  }
+  // The back end waited from the cycle after the previous record (the first
+  // triangle: from its accept) to the cycle it took this triangle.
+  c.setup = started_ ? taken - last_.record : taken - accept + 1;
+  c.record = 1;
+  front_free_ = leaves_front;
+  back_free_ = record;
+  last_ = {accept, taken, record};
+  started_ = true;
   return c;
 }
 

@@ -4,10 +4,21 @@
 // per-pixel datapaths) are pure functions of values. ScanUnit (scan_unit.hpp)
 // drives them and describes what one triangle asked of the hardware, in
 // TriangleWork: the bands and their lines, the pixels of every column walked,
-// and for the Kim designs the integer steps of every pixel. UnitTiming prices
-// that work in the clock cycles the RTL spends on it (docs/microarchitecture.md,
-// "Cycles per triangle"). A caller that needs no cycles (an error sweep) can
-// skip it: ScanUnit::compute.
+// and for the Kim designs the integer steps of every pixel. UnitTiming turns
+// that work into the triangle's phases, TrianglePhases: the cycles each band
+// fills the table and walks, or the cycles one walk takes; a pure function of
+// the work. UnitSchedule places the phases of a stream of triangles on the
+// unit's clock: the front end (accept, setup engine, table fill) and the back
+// end (column walker and datapath) each hold one triangle at a time, and with
+// setup_fifo_depth = 1 the front sets up the next triangle while the back
+// walks this one (docs/microarchitecture.md, "Cycles per triangle"). A caller
+// that needs no cycles (an error sweep) can skip both: ScanUnit::compute.
+//
+// Attribution: a triangle's clocks are those from the cycle after the previous
+// triangle's record to its own record cycle, both included (the first
+// triangle's from its accept cycle). A scene's clocks, from the first accept to
+// the last record, both included, are the sum of its triangles' clocks (no
+// back-pressure).
 #pragma once
 
 #include <cstdint>
@@ -43,32 +54,48 @@ struct TriangleWork {
   }
 };
 
+// What one triangle asks of the unit's clock, apart from its setup
+// (setup_cycles, the same for every triangle).
+struct TrianglePhases {
+  enum class Kind {
+    Empty,  // ended after setup (an empty box or det = 0)
+    Scan,   // constant depth with no possible pixel line: one pass over the columns
+    Walk,   // a per-pixel design (divide, Kim, affine): one walk, no table
+    Bands,  // constant depth: per band, fill the table, then walk every column
+  };
+  struct Band {
+    int64_t fill = 0;  // the band's lines + recip_latency
+    int64_t walk = 0;  // columns + the pixels of the band's pass
+  };
+  Kind kind = Kind::Empty;
+  int64_t scan = 0;          // Scan: one cycle per column
+  int64_t walk = 0;          // Walk: the walker and the datapath, drain included
+  std::vector<Band> bands;   // Bands: in fill order
+};
+
+// A triangle's clocks (the attribution above), by what bound them.
 struct TriangleCycles {
-  int64_t setup = 0, fill = 0, walk = 0;
-  // The clocks of the triangle's handshakes, outside its record's count: the
-  // cycle the unit accepts it (IDLE) and the cycle it offers the record.
-  int64_t handshake = 0;
-  // What the RTL's record counts: setup + fill + walk.
-  int64_t total() const { return setup + fill + walk; }
-  // Every clock the triangle holds the unit, handshakes included.
-  int64_t clocks() const { return total() + handshake; }
+  // The back end idle, waiting for the front end to finish this triangle's
+  // setup; the accept cycle is in it.
+  int64_t setup = 0;
+  // Filling the table (constant depth).
+  int64_t fill = 0;
+  // Walking the columns, and for a per-pixel design at setup_fifo_depth 1 the
+  // cycle that loads the walker from the held setup results.
+  int64_t walk = 0;
+  // The cycle the record is offered.
+  int64_t record = 0;
+  int64_t total() const { return setup + fill + walk + record; }
 };
 
 class UnitTiming {
  public:
   UnitTiming(const Design& design, const Widths& widths);
 
-  // The cycles of one triangle, from the cycle after it is accepted to the
-  // cycle before its record is offered, and its handshake cycles. The unit
-  // takes triangles one after another, so a scene's clocks, from the first
-  // triangle accepted to the last record delivered, are the sum of its
-  // triangles' clocks() (plus the stalls of back-pressure).
-  TriangleCycles price(const TriangleWork& work) const;
+  // The phases of one triangle's work.
+  TrianglePhases phases(const TriangleWork& work) const;
 
   int64_t setup_cycles() const { return setup_cycles_; }
-  // Accept and record: the unit accepts a triangle only in IDLE, the cycle
-  // after the last one's record (rtl/cd_scan_unit.sv).
-  static constexpr int64_t kHandshakeCycles = 2;
 
  private:
   int64_t walk_kim(const TriangleWork& work) const;
@@ -77,6 +104,44 @@ class UnitTiming {
   Design design_;
   Widths widths_;
   int64_t setup_cycles_;  // from the setup engine's structure (derived_widths.cpp)
+};
+
+// The cycle numbers of one triangle on the unit's clock.
+struct ScheduledTriangle {
+  int64_t accept = 0;  // the front end accepts it
+  int64_t taken = 0;   // the back end takes it, its setup done
+  int64_t record = 0;  // its record is offered
+};
+
+// One stream of triangles through one unit (one design, or a regress stream
+// of designs in turn), with no back-pressure. The front end accepts a
+// triangle, sets it up in setup_cycles and offers it to the back end from its
+// last setup cycle; the back end takes it then or, if later, in the previous
+// triangle's record cycle. With setup_fifo_depth = 1 the front end accepts the
+// next triangle in the cycle it is free again: the cycle the back end takes
+// this one or, when the table is filled (by the front end, band by band
+// between the back end's walks), the cycle the last band's fill ends. With
+// setup_fifo_depth = 0 it accepts a triangle only in the cycle after the
+// previous one's record: setup, fill and walk in turn, as before overlap.
+// Exactly the RTL's rule (rtl/cd_scan_unit.sv).
+class UnitSchedule {
+ public:
+  explicit UnitSchedule(const Widths& widths);
+
+  // Places the next triangle of the stream and returns its clocks.
+  TriangleCycles next(const TrianglePhases& phases);
+  // The cycle numbers of the triangle next() placed last.
+  const ScheduledTriangle& last() const { return last_; }
+  // Starts a new stream: the next triangle is accepted in cycle 0.
+  void reset();
+
+ private:
+  int64_t setup_cycles_;
+  int64_t fifo_depth_;
+  int64_t front_free_ = 0;  // first cycle the front end may accept a triangle
+  int64_t back_free_ = 0;   // first cycle the back end may take a triangle
+  bool started_ = false;    // a triangle has been placed, so last_.record holds
+  ScheduledTriangle last_;
 };
 
 }  // namespace cdsim

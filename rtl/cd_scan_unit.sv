@@ -7,18 +7,25 @@
 // design is chosen per triangle by kind_i (when more than one is present),
 // density_log2_i and correction_i.
 //
-// Cycles of a triangle (docs/rtl.md): one per cycle spent in SETUP, FILL,
-// COLUMN, PIXEL or SCAN (an empty walk), from the cycle after the triangle is
-// accepted to the cycle before its record is offered. Without back-pressure
-// that is the model's count exactly: SetupCycles (CD_SETUP_CYCLES) + per band (lines +
-// recip_latency) + per band (columns) + pixels. A PIXEL cycle whose fragment
-// is not taken is a stall and is counted too. divide issues one pixel per
-// PIXEL cycle into its pipeline and then DRAINs it: SetupCycles + columns +
-// pixels + recip_latency; a fragment not taken stalls the whole unit for that
-// cycle, which is counted. affine emits from its plane accumulators in PIXEL
-// cycles: SetupCycles + columns + pixels. kim-iter and kim-pipe overlap an
-// integer stage (a span division, then unit steps) with a fraction stage and
-// DRAIN the fraction stage at the end (rtl/kim_datapath.sv, docs/rtl.md).
+// Front and back (docs/rtl.md, "Front and back"): the front accepts a
+// triangle, runs the setup engine (SetupCycles) and, for the constant-depth
+// designs, fills the table band by band; the back walks the columns and runs
+// the datapath, then offers the record. The back takes a set-up triangle when
+// it is idle or in its record cycle. With CD_SETUP_FIFO_DEPTH = 1 the back
+// walks from its own copy of the setup results (the context), so the front
+// accepts the next triangle in the cycle the last one leaves it and sets it up
+// during the walk; the table has one bank, so a fill waits for the back. With
+// 0 they take turns: setup, fill and walk one after another.
+//
+// Cycles (docs/microarchitecture.md, model/timing.cpp): a walk takes one cycle
+// per column of every band and one per pixel (COLUMN, PIXEL); a fill lines +
+// recip_latency; divide DRAINs its reciprocal pipeline, Kim its fraction stage
+// (rtl/kim_datapath.sv); a per-pixel design at depth 1 spends an INIT cycle
+// loading the walker from the context. A fragment offered and not taken holds
+// the whole unit for the cycle. The record counts the clocks from the cycle
+// after the previous record was delivered (the first triangle: from its accept)
+// to its own delivery, held cycles included: the model's schedule, plus the
+// stalls.
 `include "cd_widths.svh"
 `default_nettype none
 
@@ -136,15 +143,16 @@ module cd_scan_unit #(
   localparam int StepCountBits = $clog2(SramDepth + RecipLatency + 1) + 1 > PixelBits + 1
                                  ? $clog2(SramDepth + RecipLatency + 1) + 1 : PixelBits + 1;
   localparam int FlagBanded   = `CD_FLAG_BANDED;
+  localparam int FifoDepth    = `CD_SETUP_FIFO_DEPTH;
 
-  localparam logic [2:0] StIdle   = 3'd0;
-  localparam logic [2:0] StSetup  = 3'd1;
-  localparam logic [2:0] StFill   = 3'd2;
-  localparam logic [2:0] StColumn = 3'd3;
-  localparam logic [2:0] StPixel  = 3'd4;
-  localparam logic [2:0] StScan   = 3'd5;  // columns walked with no possible line
-  localparam logic [2:0] StRecord = 3'd6;
-  localparam logic [2:0] StDrain  = 3'd7;  // per-pixel designs: the pipeline empties
+  localparam logic [2:0] StIdle     = 3'd0;
+  localparam logic [2:0] StFillWait = 3'd1;  // the front fills the table for the next band
+  localparam logic [2:0] StInit     = 3'd2;  // the walker loads from the context
+  localparam logic [2:0] StColumn   = 3'd3;
+  localparam logic [2:0] StPixel    = 3'd4;
+  localparam logic [2:0] StScan     = 3'd5;  // columns walked with no possible line
+  localparam logic [2:0] StRecord   = 3'd6;
+  localparam logic [2:0] StDrain    = 3'd7;  // per-pixel designs: the pipeline empties
 
   localparam logic [1:0] KindDivide = 2'd1;  // kind_i: 0 is constant depth
   localparam logic [1:0] KindKim    = 2'd2;
@@ -156,18 +164,41 @@ module cd_scan_unit #(
     $error("cd_scan_unit needs at least one datapath (HasTable, HasDivide, HasAffine, HasAffineSub, HasKimIter, HasKimPipe)");
   end
 
-  logic [2:0]  state_d, state_q;
-  logic [StepCountBits-1:0] count_d, count_q;   // setup / fill / scan cycle within the state
-  logic [1:0]  kind_d, kind_q;
+  // Front: accepts a triangle, runs the setup engine and fills the table;
+  // back: walks the columns and runs the datapath (docs/microarchitecture.md,
+  // "Front and back"). With FifoDepth = 1 the back walks from its own copy of
+  // the setup results (the context), so the front sets up the next triangle
+  // meanwhile; with 0 they share the setup engine's registers and take turns.
+  localparam logic [2:0] FrIdle     = 3'd0;
+  localparam logic [2:0] FrSetup    = 3'd1;
+  localparam logic [2:0] FrOffer    = 3'd2;  // set up, waiting for the back to take it
+  localparam logic [2:0] FrFill     = 3'd3;
+  localparam logic [2:0] FrBandWait = 3'd4;  // the back walks a band; another follows
+
+  logic [2:0]  front_d, front_q;
+  logic [StepCountBits-1:0] fcount_d, fcount_q;  // setup / fill cycle
+  logic [1:0]  f_kind_d, f_kind_q;
+  logic [2:0]  f_segment_log2_d, f_segment_log2_q;
+  logic        f_kim_pipelined_d, f_kim_pipelined_q;
+  logic [1:0]  f_density_log2_d, f_density_log2_q;
+  logic        f_correction_d, f_correction_q;
+  logic        f_per_pixel;                      // the front's triangle: a per-pixel design
+  logic        f_mode_affine;                    // the front's triangle: affine (its own setup)
+  logic signed [LineBits-1:0] f_band_lo_d, f_band_lo_q, f_band_hi_d, f_band_hi_q;
+  logic signed [BandBits-1:0] f_band_lines_d, f_band_lines_q;  // the band being filled, guards included
+
+  logic [2:0]  state_d, state_q;                 // the back's
+  logic [StepCountBits-1:0] count_d, count_q;    // scan / drain cycle
+  logic [1:0]  b_kind_d, b_kind_q, kind_q;
   logic        mode_divide, mode_affine, mode_sub, mode_kim;  // this triangle's datapath, when not the table
-  logic [2:0]  segment_log2_d, segment_log2_q;
-  logic        kim_pipelined_d, kim_pipelined_q;
+  logic [2:0]  b_segment_log2_d, b_segment_log2_q, segment_log2_q;
+  logic        b_kim_pipelined_d, b_kim_pipelined_q, kim_pipelined_q;
   logic        per_pixel;                        // a per-pixel design: no fill, no band clip
-  logic        stall;                            // a divide or Kim fragment offered and not taken
-  logic [1:0]  density_log2_d, density_log2_q;
-  logic        correction_d, correction_q;
+  logic        hold;                             // a fragment offered and not taken: the unit holds
+  logic [1:0]  b_density_log2_d, b_density_log2_q, density_log2_q;
+  logic        b_correction_d, b_correction_q, correction_q;
   logic signed [LineBits-1:0] band_lo_d, band_lo_q, band_hi_d, band_hi_q;
-  logic signed [BandBits-1:0] band_lines_d, band_lines_q;  // filled lines of the band, guards included
+  logic signed [BandBits-1:0] band_lines_d, band_lines_q;  // the band walked, guards included
   logic [PixelBits-1:0] offset_d, offset_q;                 // column offset o
   logic [PixelBits-1:0] major_d, major_q;
   logic [PixelBits-1:0] minor_d, minor_q, last_d, last_q;
@@ -176,27 +207,83 @@ module cd_scan_unit #(
   logic [WeightBits-1:0] weight_d, weight_q;
   logic [CountBits-1:0] cycles_d, cycles_q, lines_d, lines_q, bands_d, bands_q, pixels_d, pixels_q;
   logic [7:0]  flags_d, flags_q;
+  logic        take;        // the back takes the front's triangle at the end of this cycle
+  logic        band_ready;  // the front's last fill cycle of a band: the back walks it next
 
   // ---------------------------------------------------------------- blocks
-  logic               setup_empty, setup_x_major, setup_no_lines;
-  logic signed [GBits-1:0] setup_g;
-  logic signed [LineBits-1:0] pixel_line_lo, pixel_line_hi;
-  logic [PixelBits-1:0] major_lo, minor_lo, minor_hi;
-  logic [PixelBits:0]   major_count;
-  logic [5:0]           edge_kind;
-  logic [3*BoundBits-1:0] edge_bound;
-  logic [3*StepBits-1:0]  edge_rem, edge_step, edge_slope_rem;
-  logic [3*SlopeBits-1:0] edge_slope;
+  // The setup engine's results (s_*), and the context the back walks from
+  // (the same names without s_): a copy taken with the triangle when
+  // FifoDepth = 1, the setup engine's registers themselves when 0.
+  logic               setup_empty, setup_no_lines;
+  logic signed [LineBits-1:0] s_pixel_line_lo, s_pixel_line_hi;
   logic [7:0]         setup_flags;
+  logic               s_x_major, setup_x_major;
+  logic signed [GBits-1:0] s_g, setup_g;
+  logic signed [LineBits-1:0] pixel_line_hi;
+  logic [PixelBits-1:0] s_major_lo, s_minor_lo, s_minor_hi, major_lo, minor_lo, minor_hi;
+  logic [PixelBits:0]   s_major_count, major_count;
+  logic [5:0]           s_edge_kind, edge_kind;
+  logic [3*BoundBits-1:0] s_edge_bound, edge_bound;
+  logic [3*StepBits-1:0]  s_edge_rem, s_edge_step, s_edge_slope_rem, edge_rem, edge_step, edge_slope_rem;
+  logic [3*SlopeBits-1:0] s_edge_slope, edge_slope;
   logic               fill_valid, fill_last;
   logic [AddrBits-1:0] fill_addr;
   logic               write_valid;
   logic [AddrBits-1:0] write_addr;
   logic [WordBits-1:0] write_entry;
-  logic signed [`CD_PLANE_REF_Q_BITS-1:0]   q_at_ref;
-  logic signed [`CD_PLANE_REF_UV_BITS-1:0]  u_at_ref, v_at_ref;
-  logic signed [`CD_PLANE_STEP_Q_BITS-1:0]  q_per_major, q_per_minor;
+  logic signed [`CD_PLANE_REF_Q_BITS-1:0]   s_q_at_ref, q_at_ref;
+  logic signed [`CD_PLANE_REF_UV_BITS-1:0]  s_u_at_ref, s_v_at_ref, u_at_ref, v_at_ref;
+  logic signed [`CD_PLANE_STEP_Q_BITS-1:0]  s_q_per_major, s_q_per_minor, q_per_major, q_per_minor;
+  logic signed [`CD_PLANE_STEP_UV_BITS-1:0] s_u_per_major, s_v_per_major, s_u_per_minor, s_v_per_minor;
   logic signed [`CD_PLANE_STEP_UV_BITS-1:0] u_per_major, v_per_major, u_per_minor, v_per_minor;
+
+  if (FifoDepth > 0) begin : gen_walk_context
+    localparam int Bits = 1 + 3 * PixelBits + (PixelBits + 1) + 6 + 3 * BoundBits + 9 * StepBits + 3 * SlopeBits;
+    logic [Bits-1:0] context_q;
+    always_ff @(posedge clk_i) begin
+      if (take) context_q <= {s_x_major, s_major_lo, s_minor_lo, s_minor_hi, s_major_count, s_edge_kind,
+                              s_edge_bound, s_edge_rem, s_edge_step, s_edge_slope_rem, s_edge_slope};
+    end
+    assign {setup_x_major, major_lo, minor_lo, minor_hi, major_count, edge_kind, edge_bound, edge_rem,
+            edge_step, edge_slope_rem, edge_slope} = context_q;
+  end else begin : gen_walk_shared
+    assign {setup_x_major, major_lo, minor_lo, minor_hi, major_count, edge_kind, edge_bound, edge_rem,
+            edge_step, edge_slope_rem, edge_slope} =
+           {s_x_major, s_major_lo, s_minor_lo, s_minor_hi, s_major_count, s_edge_kind, s_edge_bound,
+            s_edge_rem, s_edge_step, s_edge_slope_rem, s_edge_slope};
+  end
+
+  if (FifoDepth > 0 && HasTable) begin : gen_line_context
+    logic signed [GBits-1:0]    g_q;
+    logic signed [LineBits-1:0] line_hi_q;
+    always_ff @(posedge clk_i) begin
+      if (take) begin
+        g_q <= s_g;
+        line_hi_q <= s_pixel_line_hi;
+      end
+    end
+    assign setup_g = g_q;
+    assign pixel_line_hi = line_hi_q;
+  end else begin : gen_line_shared
+    assign setup_g = s_g;
+    assign pixel_line_hi = s_pixel_line_hi;
+  end
+
+  if (FifoDepth > 0 && (HasDivide || HasAffineSub || HasKim)) begin : gen_plane_context
+    localparam int Bits = `CD_PLANE_REF_Q_BITS + 2 * `CD_PLANE_REF_UV_BITS + 2 * `CD_PLANE_STEP_Q_BITS +
+                          4 * `CD_PLANE_STEP_UV_BITS;
+    logic [Bits-1:0] context_q;
+    always_ff @(posedge clk_i) begin
+      if (take) context_q <= {s_q_at_ref, s_u_at_ref, s_v_at_ref, s_q_per_major, s_q_per_minor,
+                              s_u_per_major, s_v_per_major, s_u_per_minor, s_v_per_minor};
+    end
+    assign {q_at_ref, u_at_ref, v_at_ref, q_per_major, q_per_minor, u_per_major, v_per_major, u_per_minor,
+            v_per_minor} = context_q;
+  end else begin : gen_plane_shared
+    assign {q_at_ref, u_at_ref, v_at_ref, q_per_major, q_per_minor, u_per_major, v_per_major, u_per_minor,
+            v_per_minor} = {s_q_at_ref, s_u_at_ref, s_v_at_ref, s_q_per_major, s_q_per_minor, s_u_per_major,
+                            s_v_per_major, s_u_per_minor, s_v_per_minor};
+  end
 
   setup_engine #(
     .HasLines(HasTable), .HasPixelPlanes(HasDivide || HasAffineSub || HasKim),
@@ -214,28 +301,29 @@ module cd_scan_unit #(
     .viewport_height_i (viewport_height_i[13:0]),
     .density_log2_i,
     .correction_i      (correction_i && HasCorrection),
-    .setup_i           (state_q == StSetup),
-    .stage_count_i     (8'(count_q)),
+    .hold_i            (hold),
+    .setup_i           (front_q == FrSetup),
+    .stage_count_i     (8'(fcount_q)),
     .empty_o           (setup_empty),
-    .x_major_o         (setup_x_major),
-    .g_o               (setup_g),
-    .major_lo_o        (major_lo),
-    .major_count_o     (major_count),
-    .minor_lo_o        (minor_lo),
-    .minor_hi_o        (minor_hi),
+    .x_major_o         (s_x_major),
+    .g_o               (s_g),
+    .major_lo_o        (s_major_lo),
+    .major_count_o     (s_major_count),
+    .minor_lo_o        (s_minor_lo),
+    .minor_hi_o        (s_minor_hi),
     .no_lines_o        (setup_no_lines),
-    .pixel_line_lo_o   (pixel_line_lo),
-    .pixel_line_hi_o   (pixel_line_hi),
+    .pixel_line_lo_o   (s_pixel_line_lo),
+    .pixel_line_hi_o   (s_pixel_line_hi),
     .flags_o           (setup_flags),
-    .q_at_ref_o        (q_at_ref),
-    .u_at_ref_o        (u_at_ref),
-    .v_at_ref_o        (v_at_ref),
-    .q_per_major_o     (q_per_major),
-    .u_per_major_o     (u_per_major),
-    .v_per_major_o     (v_per_major),
-    .q_per_minor_o     (q_per_minor),
-    .u_per_minor_o     (u_per_minor),
-    .v_per_minor_o     (v_per_minor),
+    .q_at_ref_o        (s_q_at_ref),
+    .u_at_ref_o        (s_u_at_ref),
+    .v_at_ref_o        (s_v_at_ref),
+    .q_per_major_o     (s_q_per_major),
+    .u_per_major_o     (s_u_per_major),
+    .v_per_major_o     (s_v_per_major),
+    .q_per_minor_o     (s_q_per_minor),
+    .u_per_minor_o     (s_u_per_minor),
+    .v_per_minor_o     (s_v_per_minor),
     .u_vertex_o        (u_vertex),
     .v_vertex_o        (v_vertex),
     .dx1_o             (geometry_dx1),
@@ -245,12 +333,12 @@ module cd_scan_unit #(
     .det_o             (geometry_det),
     .ref_x_o           (geometry_ref_x),
     .ref_y_o           (geometry_ref_y),
-    .edge_kind_o       (edge_kind),
-    .edge_bound_o      (edge_bound),
-    .edge_rem_o        (edge_rem),
-    .edge_step_o       (edge_step),
-    .edge_slope_o      (edge_slope),
-    .edge_slope_rem_o  (edge_slope_rem),
+    .edge_kind_o       (s_edge_kind),
+    .edge_bound_o      (s_edge_bound),
+    .edge_rem_o        (s_edge_rem),
+    .edge_step_o       (s_edge_step),
+    .edge_slope_o      (s_edge_slope),
+    .edge_slope_rem_o  (s_edge_slope_rem),
     .fill_valid_i      (fill_valid),
     .fill_last_i       (fill_last),
     .fill_addr_i       (fill_addr),
@@ -344,7 +432,7 @@ module cd_scan_unit #(
   end
 
   // Per-pixel designs: the plane walker feeds the pixel pipeline, which a
-  // stall (a fragment offered and not taken) holds together with the walk.
+  // hold (a fragment offered and not taken) freezes with the rest of the unit.
   logic               plane_start, plane_step, pixel_issue;
   logic               pipe_valid, pipe_saturated, pipe_depth_out;
   logic signed [OutBits-1:0] pipe_u, pipe_v;
@@ -386,7 +474,7 @@ module cd_scan_unit #(
     ) u_pixel_divide (
       .clk_i,
       .rst_ni,
-      .advance_i   (!stall),
+      .advance_i   (!hold),
       .valid_i     (pixel_issue),
       .q_i         (pixel_q),
       .u_i         (pixel_u),
@@ -428,17 +516,18 @@ module cd_scan_unit #(
     localparam int AccBits = `CD_AFFINE_ACC_BITS;
     localparam int SFrac   = `CD_S_FRAC;
     localparam int OutFrac = `CD_OUT_FRAC;
-    logic signed [RefBits-1:0]      u_ref, v_ref;
+    logic signed [RefBits-1:0]      s_u_ref, s_v_ref, u_ref, v_ref;
+    logic signed [`CD_S_BITS-1:0]   s_u_major, s_u_minor, s_v_major, s_v_minor;
     logic signed [`CD_S_BITS-1:0]   u_major, u_minor, v_major, v_minor;
-    logic                           setup_saturated;
+    logic                           s_saturated, setup_saturated;
     logic signed [AccBits-1:0]      acc_u, acc_v;
     logic [1:0]                     narrow_saturated;
     localparam logic signed [7:0]   NarrowShift = 8'(SFrac - OutFrac);
 
     affine_setup u_affine_setup (
       .clk_i, .rst_ni,
-      .setup_i      (state_q == StSetup && mode_affine),
-      .stage_count_i(8'(count_q)),
+      .setup_i      (front_q == FrSetup && f_mode_affine),
+      .stage_count_i(8'(fcount_q)),
       .u_vertex_i   (u_vertex),
       .v_vertex_i   (v_vertex),
       .dx1_i        (geometry_dx1),
@@ -448,15 +537,38 @@ module cd_scan_unit #(
       .det_i        (geometry_det),
       .ref_x_i      (geometry_ref_x),
       .ref_y_i      (geometry_ref_y),
-      .x_major_i    (setup_x_major),
-      .u_ref_o      (u_ref),
-      .v_ref_o      (v_ref),
-      .u_major_o    (u_major),
-      .u_minor_o    (u_minor),
-      .v_major_o    (v_major),
-      .v_minor_o    (v_minor),
-      .saturated_o  (setup_saturated)
+      .x_major_i    (s_x_major),
+      .u_ref_o      (s_u_ref),
+      .v_ref_o      (s_v_ref),
+      .u_major_o    (s_u_major),
+      .u_minor_o    (s_u_minor),
+      .v_major_o    (s_v_major),
+      .v_minor_o    (s_v_minor),
+      .saturated_o  (s_saturated)
     );
+
+    // The back's copy of the planes (FifoDepth = 1), as for the others.
+    if (FifoDepth > 0) begin : gen_affine_context
+      logic signed [RefBits-1:0]    u_ref_q, v_ref_q;
+      logic signed [`CD_S_BITS-1:0] u_major_q, u_minor_q, v_major_q, v_minor_q;
+      logic                         saturated_q;
+      always_ff @(posedge clk_i) begin
+        if (take) begin
+          u_ref_q <= s_u_ref;
+          v_ref_q <= s_v_ref;
+          u_major_q <= s_u_major;
+          u_minor_q <= s_u_minor;
+          v_major_q <= s_v_major;
+          v_minor_q <= s_v_minor;
+          saturated_q <= s_saturated;
+        end
+      end
+      assign {u_ref, v_ref, u_major, u_minor, v_major, v_minor, setup_saturated} =
+             {u_ref_q, v_ref_q, u_major_q, u_minor_q, v_major_q, v_minor_q, saturated_q};
+    end else begin : gen_affine_shared
+      assign {u_ref, v_ref, u_major, u_minor, v_major, v_minor, setup_saturated} =
+             {s_u_ref, s_v_ref, s_u_major, s_u_minor, s_v_major, s_v_minor, s_saturated};
+    end
 
     plane_accumulator #(
       .RefBits(RefBits), .StepBits(`CD_S_BITS), .AccBits(AccBits)
@@ -486,7 +598,7 @@ module cd_scan_unit #(
     assign affine_saturated = |narrow_saturated || setup_saturated;
   end else begin : gen_no_affine
     logic unused_geometry;
-    assign unused_geometry = ^{u_vertex, v_vertex, geometry_dx1, geometry_dy1, geometry_dx2,
+    assign unused_geometry = ^{f_mode_affine, u_vertex, v_vertex, geometry_dx1, geometry_dy1, geometry_dx2,
                                geometry_dy2, geometry_ref_x, geometry_ref_y, geometry_det};
     assign affine_u = '0;
     assign affine_v = '0;
@@ -497,7 +609,7 @@ module cd_scan_unit #(
   // affine-subN: end points every 2^segment_log2 pixels, affine between.
   logic                      sub_valid, sub_saturated, sub_depth_out, sub_hold;
   logic signed [OutBits-1:0] sub_u, sub_v;
-  assign sub_hold = mode_sub && state_q == StPixel && sub_valid && !frag_ready_i;
+  assign sub_hold = hold;
 
   if (HasAffineSub) begin : gen_affine_sub
     affine_sub_datapath #(
@@ -581,7 +693,7 @@ module cd_scan_unit #(
       .HasIterative(HasKimIter), .HasPipelined(HasKimPipe)
     ) u_kim_datapath (
       .clk_i, .rst_ni,
-      .hold_i        (stall),
+      .hold_i        (hold),
       .pipelined_i   (kim_pipelined_q),
       .span_i        (plane_start && mode_kim),
       .q_start_i     (q_start),
@@ -646,30 +758,144 @@ module cd_scan_unit #(
   end
 
   // ---------------------------------------------------------------- control
-  logic signed [BandBits-1:0] guard, depth, pixel_lines, lines_per_band;
+  logic signed [BandBits-1:0] guard, depth, pixel_lines, lines_per_band;  // the front's triangle
   logic signed [BandBits-1:0] next_band_lo, next_band_hi;
   logic signed [BandBits-1:0] read_line, read_addr;
   logic [PixelBits-1:0] read_minor;
   logic               read_minor_valid;
-  logic               band_done, last_column;
+  logic               band_done, last_column, more_bands;
+  logic               job_valid, job_bands, back_free, accept, front_leaves, unit_busy;
 
-  // With one datapath the mode is a constant, and synthesis keeps only it.
-  assign mode_divide = HasDivide && (Datapaths == 1 || kind_q == KindDivide);
-  assign mode_affine = HasAffine && (Datapaths == 1 || (kind_q == KindAffine && segment_log2_q == '0));
-  assign mode_sub = HasAffineSub && (Datapaths == 1 || (kind_q == KindAffine && segment_log2_q != '0));
-  assign mode_kim = HasKim && (Datapaths == 1 || kind_q == KindKim);
+  // The designs by kind and segment: {divide, affine, affine-subN, Kim}, none
+  // for the table. With one datapath the mode is a constant, and synthesis
+  // keeps only it.
+  function automatic logic [3:0] modes_of(input logic [1:0] kind, input logic [2:0] segment_log2);
+    modes_of = {HasDivide && (Datapaths == 1 || kind == KindDivide),
+                HasAffine && (Datapaths == 1 || (kind == KindAffine && segment_log2 == '0)),
+                HasAffineSub && (Datapaths == 1 || (kind == KindAffine && segment_log2 != '0)),
+                HasKim && (Datapaths == 1 || kind == KindKim)};
+  endfunction
+  logic [3:0] f_modes;
+  assign f_modes = modes_of(f_kind_q, f_segment_log2_q);
+  assign f_mode_affine = f_modes[2];
+  assign f_per_pixel = |f_modes;
+  // The back's triangle: its own copy with FifoDepth = 1, else the front's.
+  assign kind_q = FifoDepth > 0 ? b_kind_q : f_kind_q;
+  assign segment_log2_q = FifoDepth > 0 ? b_segment_log2_q : f_segment_log2_q;
+  assign kim_pipelined_q = FifoDepth > 0 ? b_kim_pipelined_q : f_kim_pipelined_q;
+  assign density_log2_q = FifoDepth > 0 ? b_density_log2_q : f_density_log2_q;
+  assign correction_q = FifoDepth > 0 ? b_correction_q : f_correction_q;
+  assign {mode_divide, mode_affine, mode_sub, mode_kim} = modes_of(kind_q, segment_log2_q);
   assign per_pixel = mode_divide || mode_affine || mode_sub || mode_kim;
-  // The per-pixel pipelines offer fragments on their own; one not taken holds everything.
-  assign stall = ((mode_divide && pipe_valid) || (mode_kim && kim_valid)) && !frag_ready_i;
 
+  // A fragment offered and not taken holds the whole unit, front and back, for
+  // the cycle: every register but the record's clock count keeps its value
+  // and no block is strobed, so the unit's clocks are the model's plus the
+  // cycles held (docs/rtl.md).
+  assign hold = frag_valid_o && !frag_ready_i;
+
+  // The front offers its set-up triangle from the last setup cycle on; the back
+  // takes it when idle or as it delivers its record. A constant-depth triangle
+  // with lines is then filled band by band, each band walked after its fill.
+  assign job_valid = (front_q == FrSetup && fcount_q == StepCountBits'(SetupCycles - 1)) || front_q == FrOffer;
+  assign job_bands = !setup_empty && !f_per_pixel && !setup_no_lines;
+  assign back_free = state_q == StIdle || (state_q == StRecord && rec_ready_i);
+  assign take = job_valid && back_free && !hold;
+  assign band_ready = front_q == FrFill &&
+                      BandBits'($signed({1'b0, fcount_q})) == f_band_lines_q + BandBits'(RecipLatency - 1);
+  assign more_bands = f_band_hi_q < s_pixel_line_hi;
+  // The front is free the cycle its triangle leaves it, and with FifoDepth = 1
+  // accepts the next one in that cycle; with 0 only once the back is idle too.
+  assign front_leaves = (take && !job_bands) || (band_ready && !more_bands);
+  assign tri_ready_o = !hold && (FifoDepth > 0 ? front_q == FrIdle || front_leaves
+                                               : front_q == FrIdle && state_q == StIdle);
+  assign accept = tri_valid_i && tri_ready_o;
+
+  // ---- front
+  always_comb begin
+    front_d = front_q;
+    fcount_d = fcount_q;
+    f_kind_d = f_kind_q;
+    f_segment_log2_d = f_segment_log2_q;
+    f_kim_pipelined_d = f_kim_pipelined_q;
+    f_density_log2_d = f_density_log2_q;
+    f_correction_d = f_correction_q;
+    f_band_lo_d = f_band_lo_q;
+    f_band_hi_d = f_band_hi_q;
+    f_band_lines_d = f_band_lines_q;
+    fill_valid = 1'b0;
+    fill_last = 1'b0;
+    fill_addr = '0;
+
+    guard = BandBits'($signed({1'b0, f_correction_q}));
+    pixel_lines = BandBits'(s_pixel_line_hi) - BandBits'(s_pixel_line_lo) + BandBits'(1);
+    depth = BandBits'(TableDepth) <<< f_density_log2_q;
+    lines_per_band = pixel_lines + 2 * guard <= depth ? pixel_lines : depth - 2 * guard;
+    next_band_lo = BandBits'(f_band_hi_q) + BandBits'(1);
+    next_band_hi = next_band_lo + lines_per_band - BandBits'(1);
+    if (next_band_hi > BandBits'(s_pixel_line_hi)) next_band_hi = BandBits'(s_pixel_line_hi);
+
+    unique case (front_q)
+      FrIdle, FrOffer: ;
+      FrSetup: begin
+        fcount_d = fcount_q + StepCountBits'(1);
+        if (fcount_q == StepCountBits'(SetupCycles - 1)) begin
+          fcount_d = '0;
+          front_d = FrOffer;
+        end
+      end
+      FrFill: begin
+        fcount_d = fcount_q + StepCountBits'(1);
+        if (BandBits'($signed({1'b0, fcount_q})) < f_band_lines_q) begin
+          fill_valid = !hold;
+          fill_last = BandBits'($signed({1'b0, fcount_q})) == f_band_lines_q - BandBits'(1);
+          fill_addr = AddrBits'(fcount_q);
+        end
+        if (band_ready) begin
+          fcount_d = '0;
+          front_d = more_bands ? FrBandWait : FrIdle;
+        end
+      end
+      FrBandWait: if (band_done) begin
+        front_d = FrFill;
+        f_band_lo_d = LineBits'(next_band_lo);
+        f_band_hi_d = LineBits'(next_band_hi);
+        f_band_lines_d = next_band_hi - next_band_lo + BandBits'(1) + 2 * guard;
+      end
+      default: front_d = FrIdle;
+    endcase
+
+    if (take) begin
+      front_d = FrIdle;
+      if (job_bands) begin
+        front_d = FrFill;
+        fcount_d = '0;
+        f_band_lo_d = s_pixel_line_lo;
+        f_band_hi_d = LineBits'(BandBits'(s_pixel_line_lo) + lines_per_band - BandBits'(1));
+        if (f_band_hi_d > s_pixel_line_hi) f_band_hi_d = s_pixel_line_hi;
+        f_band_lines_d = BandBits'(f_band_hi_d) - BandBits'(f_band_lo_d) + BandBits'(1) + 2 * guard;
+      end
+    end
+    if (accept) begin
+      front_d = FrSetup;
+      fcount_d = '0;
+      f_kind_d = kind_i;
+      f_segment_log2_d = segment_log2_i;
+      f_kim_pipelined_d = kim_pipelined_i;
+      f_density_log2_d = density_log2_i;
+      f_correction_d = correction_i && HasCorrection;
+    end
+  end
+
+  // ---- back
   always_comb begin
     state_d = state_q;
     count_d = count_q;
-    kind_d = kind_q;
-    segment_log2_d = segment_log2_q;
-    kim_pipelined_d = kim_pipelined_q;
-    density_log2_d = density_log2_q;
-    correction_d = correction_q;
+    b_kind_d = b_kind_q;
+    b_segment_log2_d = b_segment_log2_q;
+    b_kim_pipelined_d = b_kim_pipelined_q;
+    b_density_log2_d = b_density_log2_q;
+    b_correction_d = b_correction_q;
     band_lo_d = band_lo_q;
     band_hi_d = band_hi_q;
     band_lines_d = band_lines_q;
@@ -680,14 +906,10 @@ module cd_scan_unit #(
     line_shift_d = line_shift_q;
     direction_d = direction_q;
     weight_d = weight_q;
-    cycles_d = cycles_q;
     lines_d = lines_q;
     bands_d = bands_q;
     pixels_d = pixels_q;
     flags_d = flags_q;
-    fill_valid = 1'b0;
-    fill_last = 1'b0;
-    fill_addr = '0;
     column_init = 1'b0;
     column_advance = 1'b0;
     read_minor_valid = 1'b0;
@@ -697,73 +919,27 @@ module cd_scan_unit #(
     plane_step = 1'b0;
     pixel_issue = 1'b0;
 
-    guard = BandBits'($signed({1'b0, correction_q}));
-    pixel_lines = BandBits'(pixel_line_hi) - BandBits'(pixel_line_lo) + BandBits'(1);
-    depth = BandBits'(TableDepth) <<< density_log2_q;
-    lines_per_band = pixel_lines + 2 * guard <= depth ? pixel_lines : depth - 2 * guard;
-    next_band_lo = BandBits'(band_hi_q) + BandBits'(1);
     last_column = (PixelBits+1)'(offset_q) == major_count - (PixelBits+1)'(1);
 
-    if (state_q != StIdle && state_q != StRecord) cycles_d = cycles_q + CountBits'(1);
-
     unique case (state_q)
-      StIdle: begin
-        if (tri_valid_i) begin
-          state_d = StSetup;
-          count_d = '0;
-          kind_d = kind_i;
-          segment_log2_d = segment_log2_i;
-          kim_pipelined_d = kim_pipelined_i;
-          density_log2_d = density_log2_i;
-          correction_d = correction_i && HasCorrection;
-          cycles_d = '0;
-          lines_d = '0;
-          bands_d = '0;
-          pixels_d = '0;
-          flags_d = '0;
-        end
+      StIdle: ;
+      StFillWait: if (band_ready) begin
+        // The front's last fill cycle of the band: its lines are in the table.
+        state_d = StColumn;
+        offset_d = '0;
+        column_init = 1'b1;
+        band_lo_d = f_band_lo_q;
+        band_hi_d = f_band_hi_q;
+        band_lines_d = f_band_lines_q;
+        bands_d = bands_q + CountBits'(1);
+        lines_d = lines_q + CountBits'(f_band_lines_q);
       end
-      StSetup: begin
-        count_d = count_q + StepCountBits'(1);
-        if (count_q == StepCountBits'(SetupCycles - 1)) begin
-          count_d = '0;
-          offset_d = '0;
-          if (setup_empty) begin
-            state_d = StRecord;
-          end else begin
-            flags_d = setup_flags;
-            if (per_pixel) begin
-              state_d = StColumn;
-              column_init = 1'b1;
-            end else if (setup_no_lines) begin
-              state_d = StScan;
-            end else begin
-              state_d = StFill;
-              band_lo_d = pixel_line_lo;
-              band_hi_d = LineBits'(BandBits'(pixel_line_lo) + lines_per_band - BandBits'(1));
-              if (band_hi_d > pixel_line_hi) band_hi_d = pixel_line_hi;
-              band_lines_d = BandBits'(band_hi_d) - BandBits'(band_lo_d) + BandBits'(1) + 2 * guard;
-              bands_d = CountBits'(1);
-              lines_d = CountBits'(band_lines_d);
-            end
-          end
-        end
+      StInit: begin
+        // FifoDepth = 1: the walker loads from the context taken last cycle.
+        state_d = StColumn;
+        column_init = 1'b1;
       end
-      StFill: begin
-        count_d = count_q + StepCountBits'(1);
-        if (BandBits'($signed({1'b0, count_q})) < band_lines_q) begin
-          fill_valid = 1'b1;
-          fill_last = BandBits'($signed({1'b0, count_q})) == band_lines_q - BandBits'(1);
-          fill_addr = AddrBits'(count_q);
-        end
-        if (BandBits'($signed({1'b0, count_q})) == band_lines_q + BandBits'(RecipLatency - 1)) begin
-          state_d = StColumn;
-          count_d = '0;
-          offset_d = '0;
-          column_init = 1'b1;
-        end
-      end
-      StColumn: if (!stall) begin
+      StColumn: begin
         major_d = column_major;
         line_shift_d = column_line_shift;
         direction_d = column_direction;
@@ -782,64 +958,46 @@ module cd_scan_unit #(
           column_advance = 1'b1;
         end
       end
-      StPixel: if (mode_divide) begin
-        // Issue the pixel into the pipeline; its fragment leaves RecipLatency cycles later.
-        if (!stall) begin
-          pixel_issue = 1'b1;
-          if (minor_q == last_q) begin
-            if (last_column) begin
-              band_done = 1'b1;
-            end else begin
-              state_d = StColumn;
-              offset_d = offset_q + PixelBits'(1);
-              column_advance = 1'b1;
-            end
+      StPixel: if (mode_divide || (mode_kim && kim_handoff)) begin
+        // divide issues the pixel into its pipeline, whose fragment leaves
+        // RecipLatency cycles later; Kim's integer stage hands its pixel to the
+        // fraction stage, which offers the fragment later.
+        pixel_issue = mode_divide;
+        if (minor_q == last_q) begin
+          if (last_column) begin
+            band_done = 1'b1;
           end else begin
-            minor_d = minor_q + PixelBits'(1);
-            plane_step = 1'b1;
+            state_d = StColumn;
+            offset_d = offset_q + PixelBits'(1);
+            column_advance = 1'b1;
           end
+        end else begin
+          minor_d = minor_q + PixelBits'(1);
+          plane_step = mode_divide;
         end
-      end else if (mode_kim) begin
-        // The integer stage hands its pixel to the fraction stage, which offers
-        // the fragment later; the walk moves on with the hand-offs.
-        if (!stall && kim_handoff) begin
-          if (minor_q == last_q) begin
-            if (last_column) begin
-              band_done = 1'b1;
-            end else begin
-              state_d = StColumn;
-              offset_d = offset_q + PixelBits'(1);
-              column_advance = 1'b1;
-            end
+      end else if (!mode_divide && !mode_kim && frag_ready_i && (!mode_sub || sub_valid)) begin
+        pixels_d = pixels_q + CountBits'(1);
+        flags_d = flags_q | frag_flags;
+        if (minor_q == last_q) begin
+          if (last_column) begin
+            band_done = 1'b1;
           end else begin
-            minor_d = minor_q + PixelBits'(1);
+            state_d = StColumn;
+            offset_d = offset_q + PixelBits'(1);
+            column_advance = 1'b1;
           end
-        end
-      end else begin
-        if (frag_ready_i && (!mode_sub || sub_valid)) begin
-          pixels_d = pixels_q + CountBits'(1);
-          flags_d = flags_q | frag_flags;
-          if (minor_q == last_q) begin
-            if (last_column) begin
-              band_done = 1'b1;
-            end else begin
-              state_d = StColumn;
-              offset_d = offset_q + PixelBits'(1);
-              column_advance = 1'b1;
-            end
-          end else begin
-            minor_d = minor_q + PixelBits'(1);
-            read_minor_valid = !per_pixel;
-            read_minor = minor_q + PixelBits'(1);
-            plane_step = mode_affine;
-          end
+        end else begin
+          minor_d = minor_q + PixelBits'(1);
+          read_minor_valid = !per_pixel;
+          read_minor = minor_q + PixelBits'(1);
+          plane_step = mode_affine;
         end
       end
       StScan: begin
         count_d = count_q + StepCountBits'(1);
         if ((PixelBits+1)'(count_q) == major_count - (PixelBits+1)'(1)) state_d = StRecord;
       end
-      StDrain: if (!stall) begin
+      StDrain: begin
         count_d = count_q + StepCountBits'(1);
         if (mode_kim) begin
           if (kim_drained) state_d = StRecord;
@@ -847,15 +1005,11 @@ module cd_scan_unit #(
           state_d = StRecord;
         end
       end
-      StRecord: begin
-        if (rec_ready_i) state_d = StIdle;
-      end
+      StRecord: if (rec_ready_i) state_d = StIdle;
       default: state_d = StIdle;
     endcase
 
     // End of a band: the next band, or the record.
-    next_band_hi = next_band_lo + lines_per_band - BandBits'(1);
-    if (next_band_hi > BandBits'(pixel_line_hi)) next_band_hi = BandBits'(pixel_line_hi);
     if (band_done && mode_divide) begin
       state_d = StDrain;
       count_d = '0;
@@ -867,13 +1021,7 @@ module cd_scan_unit #(
       state_d = StRecord;
     end else if (band_done) begin
       if (band_hi_q < pixel_line_hi) begin
-        state_d = StFill;
-        count_d = '0;
-        band_lo_d = LineBits'(next_band_lo);
-        band_hi_d = LineBits'(next_band_hi);
-        band_lines_d = next_band_hi - next_band_lo + BandBits'(1) + 2 * guard;
-        bands_d = bands_q + CountBits'(1);
-        lines_d = lines_q + CountBits'(band_lines_d);
+        state_d = StFillWait;
         flags_d[FlagBanded] = 1'b1;
       end else begin
         state_d = StRecord;
@@ -894,11 +1042,59 @@ module cd_scan_unit #(
     // An affine-subN end point with q <= 0.
     if (mode_sub && sub_depth_out) flags_d[`CD_FLAG_DEPTH_RANGE] = 1'b1;
 
+    // The back takes the front's triangle (in its record cycle, after the
+    // record's own values were offered).
+    if (take) begin
+      b_kind_d = f_kind_q;
+      b_segment_log2_d = f_segment_log2_q;
+      b_kim_pipelined_d = f_kim_pipelined_q;
+      b_density_log2_d = f_density_log2_q;
+      b_correction_d = f_correction_q;
+      lines_d = '0;
+      bands_d = '0;
+      pixels_d = '0;
+      flags_d = setup_empty ? '0 : setup_flags;
+      offset_d = '0;
+      count_d = '0;
+      if (setup_empty) begin
+        state_d = StRecord;
+      end else if (job_bands) begin
+        state_d = StFillWait;
+      end else if (!f_per_pixel) begin
+        state_d = StScan;  // columns walked with no possible line
+      end else if (FifoDepth > 0) begin
+        state_d = StInit;
+      end else begin
+        state_d = StColumn;
+        column_init = 1'b1;  // from the setup engine's registers
+      end
+    end
+
+    // Held: no block is strobed (the registers keep their values).
+    if (hold) begin
+      column_init = 1'b0;
+      column_advance = 1'b0;
+      read_minor_valid = 1'b0;
+      plane_start = 1'b0;
+      plane_step = 1'b0;
+      pixel_issue = 1'b0;
+    end
+
     // Table read for the next pixel: its line, and the neighbour line.
     read_line = (BandBits'($signed({1'b0, read_minor})) - BandBits'($signed({1'b0, minor_lo})))
                 <<< density_log2_q;
     read_line = read_line - (state_q == StColumn ? BandBits'(column_line_shift) : BandBits'(line_shift_q));
-    read_addr = read_line - (BandBits'(band_lo_q) - guard);
+    read_addr = read_line - (BandBits'(band_lo_q) - BandBits'($signed({1'b0, correction_q})));
+  end
+
+  // The record's clocks: every cycle from the one after the last record was
+  // delivered (from the accept, for the first triangle) to its own delivery,
+  // held cycles included. Overlapping triangles are thus attributed in order.
+  assign unit_busy = front_q != FrIdle || state_q != StIdle || accept;
+  always_comb begin
+    cycles_d = cycles_q;
+    if (state_q == StRecord && rec_ready_i) cycles_d = '0;
+    else if (unit_busy) cycles_d = cycles_q + CountBits'(1);
   end
 
   assign read = read_minor_valid;
@@ -909,13 +1105,31 @@ module cd_scan_unit #(
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
+      cycles_q <= '0;
+    end else begin
+      cycles_q <= cycles_d;
+    end
+  end
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      front_q <= FrIdle;
+      fcount_q <= '0;
+      f_kind_q <= '0;
+      f_segment_log2_q <= '0;
+      f_kim_pipelined_q <= 1'b0;
+      f_density_log2_q <= '0;
+      f_correction_q <= 1'b0;
+      f_band_lo_q <= '0;
+      f_band_hi_q <= '0;
+      f_band_lines_q <= '0;
       state_q <= StIdle;
       count_q <= '0;
-      kind_q <= '0;
-      segment_log2_q <= '0;
-      kim_pipelined_q <= 1'b0;
-      density_log2_q <= '0;
-      correction_q <= 1'b0;
+      b_kind_q <= '0;
+      b_segment_log2_q <= '0;
+      b_kim_pipelined_q <= 1'b0;
+      b_density_log2_q <= '0;
+      b_correction_q <= 1'b0;
       band_lo_q <= '0;
       band_hi_q <= '0;
       band_lines_q <= '0;
@@ -926,19 +1140,28 @@ module cd_scan_unit #(
       line_shift_q <= '0;
       direction_q <= '0;
       weight_q <= '0;
-      cycles_q <= '0;
       lines_q <= '0;
       bands_q <= '0;
       pixels_q <= '0;
       flags_q <= '0;
-    end else begin
+    end else if (!hold) begin
+      front_q <= front_d;
+      fcount_q <= fcount_d;
+      f_kind_q <= f_kind_d;
+      f_segment_log2_q <= f_segment_log2_d;
+      f_kim_pipelined_q <= f_kim_pipelined_d;
+      f_density_log2_q <= f_density_log2_d;
+      f_correction_q <= f_correction_d;
+      f_band_lo_q <= f_band_lo_d;
+      f_band_hi_q <= f_band_hi_d;
+      f_band_lines_q <= f_band_lines_d;
       state_q <= state_d;
       count_q <= count_d;
-      kind_q <= kind_d;
-      segment_log2_q <= segment_log2_d;
-      kim_pipelined_q <= kim_pipelined_d;
-      density_log2_q <= density_log2_d;
-      correction_q <= correction_d;
+      b_kind_q <= b_kind_d;
+      b_segment_log2_q <= b_segment_log2_d;
+      b_kim_pipelined_q <= b_kim_pipelined_d;
+      b_density_log2_q <= b_density_log2_d;
+      b_correction_q <= b_correction_d;
       band_lo_q <= band_lo_d;
       band_hi_q <= band_hi_d;
       band_lines_q <= band_lines_d;
@@ -949,7 +1172,6 @@ module cd_scan_unit #(
       line_shift_q <= line_shift_d;
       direction_q <= direction_d;
       weight_q <= weight_d;
-      cycles_q <= cycles_d;
       lines_q <= lines_d;
       bands_q <= bands_d;
       pixels_q <= pixels_d;
@@ -958,8 +1180,6 @@ module cd_scan_unit #(
   end
 
   // ---------------------------------------------------------------- outputs
-  assign tri_ready_o = state_q == StIdle;
-
   logic [PixelBits-1:0] frag_major, frag_minor;
   assign frag_major = mode_divide ? pipe_tag[PixelBits +: PixelBits] :
                       mode_kim ? kim_tag[PixelBits +: PixelBits] : major_q;
@@ -973,7 +1193,9 @@ module cd_scan_unit #(
   assign frag_flags_o = frag_flags;
 
   assign rec_valid_o = state_q == StRecord;
-  assign rec_cycles_o = 64'(cycles_q);
+  logic [CountBits-1:0] record_cycles;  // this cycle included
+  assign record_cycles = cycles_q + CountBits'(1);
+  assign rec_cycles_o = 64'(record_cycles);
   assign rec_lines_o = 32'(lines_q);
   assign rec_bands_o = 32'(bands_q);
   assign rec_pixels_o = 32'(pixels_q);
@@ -995,13 +1217,13 @@ module cd_scan_unit #(
     obs_write_valid_o = '0;
     obs_write_addr_o = '0;
     if (HasObservation) begin
-      obs_setup_valid_o = state_q == StSetup && count_q == StepCountBits'(SetupCycles - 1);
-      obs_setup_bits_o = {4'd0, setup_flags[`CD_FLAG_DEPTH_RANGE], setup_no_lines, setup_x_major,
+      obs_setup_valid_o = front_q == FrSetup && fcount_q == StepCountBits'(SetupCycles - 1) && !hold;
+      obs_setup_bits_o = {4'd0, setup_flags[`CD_FLAG_DEPTH_RANGE], setup_no_lines, s_x_major,
                           setup_empty};
-      obs_setup_box_o = {16'(major_lo), 16'(major_count), 16'(minor_lo), 16'(minor_hi)};
+      obs_setup_box_o = {16'(s_major_lo), 16'(s_major_count), 16'(s_minor_lo), 16'(s_minor_hi)};
       if (HasTable) begin
-        obs_setup_g_o = 32'(setup_g);
-        obs_setup_lines_o = {32'(pixel_line_lo), 32'(pixel_line_hi)};
+        obs_setup_g_o = 32'(s_g);
+        obs_setup_lines_o = {32'(s_pixel_line_lo), 32'(s_pixel_line_hi)};
         obs_write_valid_o = write_valid;
         obs_write_addr_o = 32'(write_addr);
       end

@@ -44,6 +44,9 @@ module setup_engine #(
   input  logic [13:0]                viewport_height_i,
   input  logic [1:0]                 density_log2_i,
   input  logic                       correction_i,
+  // A held unit (a fragment refused): the fill pipeline keeps its contents and
+  // writes nothing; the stages, on the held stage count, reload what they hold.
+  input  logic                       hold_i,
   input  logic                       setup_i,
   input  logic [7:0]                 stage_count_i,
   // Results, valid from stage E on.
@@ -1027,7 +1030,7 @@ module setup_engine #(
       .RecipBits(RecipBits), .Latency(`CD_RECIP_LATENCY), .TagBits(TagBits)
     ) u_reciprocal (
       .clk_i, .rst_ni,
-      .advance_i (1'b1),
+      .advance_i (!hold_i),
       .valid_i   (fill_valid_i),
       .mantissa_i(mantissa),
       .tag_i     (issue_tag),
@@ -1090,11 +1093,11 @@ module setup_engine #(
       write_entry_o[`CD_WORD_SATURATED_BIT] = |entry_saturated;
       write_entry_o[`CD_WORD_DEPTH_RANGE_BIT] = result_depth_out;
     end
-    assign write_valid_o = result_valid;
+    assign write_valid_o = result_valid && !hold_i;
     assign write_addr_o = result_addr;
   end else begin : gen_no_fill
     logic unused_fill;
-    assign unused_fill = ^{fill_valid_i, fill_last_i, fill_addr_i, q_at_ref_q, u_at_ref_q, v_at_ref_q,
+    assign unused_fill = ^{hold_i, fill_valid_i, fill_last_i, fill_addr_i, q_at_ref_q, u_at_ref_q, v_at_ref_q,
                            q_per_line_q, u_per_line_q, v_per_line_q, step_u_q, step_v_q, line_lo_q,
                            guard_q};
     assign write_valid_o = 1'b0;

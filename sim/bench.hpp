@@ -1,9 +1,11 @@
 // The SystemC bench of the Verilated scan unit: a source that feeds triangles
 // through the ready/valid input, a sink with random back-pressure, and the
-// scoreboard seam (scoreboard.hpp) between them and the C++ model. Sampling and
-// driving happen on the falling clock edge, so every value the bench reads is
-// the settled state of the cycle, and every value it writes is what the unit
-// samples at the next rising edge.
+// scoreboard seam (scoreboard.hpp) between them and the C++ model. Inputs are
+// driven on the falling clock edge; transfers are sampled on the rising edge,
+// where every value read is the settled value of the cycle ending (a valid
+// and ready both high there is a transfer, whatever the unit's combinational
+// paths from input to output). The source offers the next triangle as soon as
+// the last one is taken, so triangles overlap in the unit as it allows.
 //
 // A header so that each Verilated model instantiates the same bench: the
 // built-in width configurations in regress.cpp, and the RTL that
@@ -18,6 +20,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <deque>
 #include <functional>
 #include <iostream>
 #include <memory>
@@ -37,18 +40,21 @@ struct BenchSummary {
   std::vector<uint64_t> failed;  // numbers of the triangles that failed
   int64_t clock_cycles = 0;
   // Every clock from the first triangle accepted to the last record delivered,
-  // as the bench counted them, and as the model predicts them: its clocks
-  // (cycles and handshakes) plus the stalls of back-pressure.
+  // as the bench counted them, and as the model predicts them: its schedule's
+  // clocks plus the stalls of back-pressure.
   int64_t clocks = 0, model_clocks = 0;
   double seconds = 0;
 };
 
 struct BenchOptions {
   uint64_t seed = 1;          // of the back-pressure (and named in every report)
-  double backpressure = 0.0;  // probability that the fragment sink stalls a cycle
+  // Probability that the fragment sink refuses a fragment offered in a cycle.
+  // Each triangle draws from its own generator, seeded by its number, in the
+  // cycles its fragments are offered: a replay sees the same refusals.
+  double backpressure = 0.0;
   std::string trace;          // FST waveform of the whole run, if not empty
   std::string coverage;       // Verilator coverage data of the run, if not empty (a coverage build)
-  // Per job: cycles without its record before a hang is reported
+  // Per job: cycles without its record (counted from the last record) before a hang is reported
   // (regress.cpp, hang_cycle_limit: scaled by the model's cycles and the back-pressure).
   std::vector<int64_t> cycle_limits;
   BenchSummary* summary = nullptr;  // filled at the end, if given
@@ -120,14 +126,22 @@ class Bench : public sc_core::sc_module {
     SC_METHOD(on_falling_edge);
     sensitive << clk.negedge_event();
     dont_initialize();
+    SC_METHOD(on_rising_edge);
+    sensitive << clk.posedge_event();
+    dont_initialize();
   }
 
-  // Replays one triangle (after a mismatch, with the waveform on).
+  // Replays one triangle alone from an idle unit (after a mismatch, with the
+  // waveform on): the same values and back-pressure; its cycles are those of a
+  // triangle with nothing before it.
   void replay(size_t index) {
     replay_ = true;
     next_job_ = index;
     last_job_ = index + 1;
     failed_ = false;
+    stopping_ = false;
+    checking_ = true;
+    scoreboard_.restart();
   }
 
   bool failed() const { return failed_; }
@@ -144,6 +158,7 @@ class Bench : public sc_core::sc_module {
   Dut dut;
 
  private:
+  // Drives the inputs for the coming cycle.
   void on_falling_edge() {
     ++clock_cycles_;
     if (reset_cycles_ > 0) {
@@ -152,12 +167,51 @@ class Bench : public sc_core::sc_module {
       if (--reset_cycles_ == 0) rst_n.write(true);
       return;
     }
-    // Sink: the fragment taken at the coming rising edge, if any.
-    const bool ready =
-        !(options_.backpressure > 0 && stall_dist_(stall_rng_) < options_.backpressure);
+    if (!in_flight_.empty() && ++busy_cycles_ > cycle_limit_) {
+      const Job& job = jobs_[in_flight_.front()];
+      std::cout << fmt::format("HANG seed {} triangle {}: no record after {} cycles\n  triangle {}\n",
+                               options_.seed, job.number, busy_cycles_, describe_job(job));
+      hung_ = true;
+      sc_core::sc_pause();
+      return;
+    }
+    // Sink: the fragment offered this cycle (frag_valid depends on the unit's
+    // state only) is refused with the probability of back-pressure.
+    bool ready = true;
+    if (frag_valid.read() && options_.backpressure > 0)
+      ready = !(stall_dist_(stall_rng_) < options_.backpressure);
     frag_ready.write(ready);
+    // Source: the next triangle, offered until taken.
+    if (!presenting_ && !stopping_ && next_job_ < last_job_) {
+      const Job& job = jobs_[next_job_];
+      for (size_t i = 0; i < 3; ++i) {
+        const UnitVertex& v = job.triangle.vertex[i];
+        tri_x[i].write(static_cast<uint32_t>(v.x));
+        tri_y[i].write(static_cast<uint32_t>(v.y));
+        tri_q[i].write(v.q_float);
+        tri_u[i].write(static_cast<uint32_t>(v.u));
+        tri_v[i].write(static_cast<uint32_t>(v.v));
+      }
+      viewport_width.write(static_cast<uint32_t>(job.viewport_width));
+      viewport_height.write(static_cast<uint32_t>(job.viewport_height));
+      const DesignSelect select = design_select(*job.design);
+      kind.write(static_cast<uint32_t>(select.kind));
+      segment_log2.write(static_cast<uint32_t>(select.segment_log2));
+      density_log2.write(static_cast<uint32_t>(select.density_log2));
+      correction.write(select.correction);
+      kim_pipelined.write(select.kim_pipelined);
+      presenting_ = true;
+      presented_ = next_job_++;
+    }
+    if (stopping_) presenting_ = false;  // a failure: offer nothing more
+    tri_valid.write(presenting_);
+  }
+
+  // Samples the transfers of the cycle ending.
+  void on_rising_edge() {
+    if (reset_cycles_ > 0 || hung_) return;
     if (frag_valid.read()) {
-      if (!ready) {
+      if (!frag_ready.read()) {
         ++stalls_;
       } else if (checking_) {
         RtlFragment f;
@@ -197,15 +251,7 @@ class Bench : public sc_core::sc_module {
       w.depth_range = (obs_write_flags.read() >> 1) & 1;
       if (!scoreboard_.table_write(w)) fail();
     }
-    if (in_flight_ && ++busy_cycles_ > cycle_limit_) {
-      std::cout << fmt::format("HANG seed {} triangle {}: no record after {} cycles\n  triangle {}\n",
-                               options_.seed, jobs_[current_].number, busy_cycles_,
-                               describe_job(jobs_[current_]));
-      hung_ = true;
-      sc_core::sc_pause();
-      return;
-    }
-    if (rec_valid.read()) {
+    if (rec_valid.read() && rec_ready.read()) {
       RtlRecord r;
       r.cycles = static_cast<int64_t>(rec_cycles.read());
       r.lines = rec_lines.read();
@@ -217,65 +263,44 @@ class Bench : public sc_core::sc_module {
         last_record_clock_ = clock_cycles_;
         total_stalls_ += stalls_;
       }
-      in_flight_ = false;
-      ++triangles_done_;
-      if (options_.on_record && !replay_) options_.on_record(triangles_done_);
-      if (failed_ || replay_) {
-        tri_valid.write(false);
-        sc_core::sc_pause();
-        return;
-      }
-    }
-    // Source: offer the next triangle; it is taken at the coming rising edge
-    // when the unit is ready.
-    if (!presenting_ && !in_flight_ && next_job_ < last_job_) {
-      const Job& job = jobs_[next_job_];
-      for (size_t i = 0; i < 3; ++i) {
-        const UnitVertex& v = job.triangle.vertex[i];
-        tri_x[i].write(static_cast<uint32_t>(v.x));
-        tri_y[i].write(static_cast<uint32_t>(v.y));
-        tri_q[i].write(v.q_float);
-        tri_u[i].write(static_cast<uint32_t>(v.u));
-        tri_v[i].write(static_cast<uint32_t>(v.v));
-      }
-      viewport_width.write(static_cast<uint32_t>(job.viewport_width));
-      viewport_height.write(static_cast<uint32_t>(job.viewport_height));
-      const DesignSelect select = design_select(*job.design);
-      kind.write(static_cast<uint32_t>(select.kind));
-      segment_log2.write(static_cast<uint32_t>(select.segment_log2));
-      density_log2.write(static_cast<uint32_t>(select.density_log2));
-      correction.write(select.correction);
-      kim_pipelined.write(select.kim_pipelined);
-      tri_valid.write(true);
-      presenting_ = true;
-      current_ = next_job_++;
-      if (checking_) scoreboard_.begin(job.number, job);
-    } else {
-      tri_valid.write(presenting_);
-    }
-    if (presenting_ && tri_ready.read()) {
-      // Accepted at the coming edge: its stalls and back-pressure start now,
-      // from a generator seeded by the triangle, so that a replay is identical.
-      presenting_ = false;
-      in_flight_ = true;
-      if (first_accept_clock_ < 0 && !replay_) first_accept_clock_ = clock_cycles_;
       stalls_ = 0;
       busy_cycles_ = 0;
-      cycle_limit_ = options_.cycle_limits.at(current_);
-      stall_rng_.seed(mix_seed(options_.seed, jobs_[current_].number));
-    } else if (!presenting_ && !in_flight_) {
-      tri_valid.write(false);
-      if (next_job_ >= last_job_) sc_core::sc_pause();
+      if (!in_flight_.empty()) in_flight_.pop_front();
+      ++triangles_done_;
+      if (options_.on_record && !replay_) options_.on_record(triangles_done_);
+      if (!in_flight_.empty()) start_triangle(in_flight_.front());
     }
+    if (tri_valid.read() && tri_ready.read() && presenting_) {
+      const size_t job = presented_;
+      presenting_ = false;
+      if (first_accept_clock_ < 0 && !replay_) first_accept_clock_ = clock_cycles_;
+      in_flight_.push_back(job);
+      if (checking_) scoreboard_.accept(job, jobs_[job]);
+      if (in_flight_.size() == 1) {
+        busy_cycles_ = 0;
+        start_triangle(job);
+      }
+    }
+    const bool source_done = stopping_ || (next_job_ >= last_job_ && !presenting_);
+    if (source_done && in_flight_.empty()) sc_core::sc_pause();
+  }
+
+  // The triangle whose fragments come next: its back-pressure generator, and
+  // the cycles it may take until its record.
+  void start_triangle(size_t job) {
+    cycle_limit_ = options_.cycle_limits.at(job);
+    stall_rng_.seed(mix_seed(options_.seed, jobs_[job].number));
   }
 
   void fail() {
     if (!failed_) {
       failed_ = true;
-      failed_index_ = current_;
+      failed_index_ = scoreboard_.failed_index();
       std::cout << scoreboard_.mismatch() << '\n';
     }
-    checking_ = replay_;  // drain the failing triangle without further checks
+    // Drain the triangles in the unit without further checks, offer no more.
+    checking_ = replay_;
+    stopping_ = true;
   }
 
   sc_core::sc_signal<bool> rst_n{"rst_n"}, tri_valid{"tri_valid"}, tri_ready{"tri_ready"};
@@ -293,9 +318,10 @@ class Bench : public sc_core::sc_module {
   const std::vector<Job>& jobs_;
   Scoreboard& scoreboard_;
   const BenchOptions& options_;
-  size_t next_job_ = 0, last_job_ = SIZE_MAX, current_ = 0, failed_index_ = 0;
+  size_t next_job_ = 0, last_job_ = SIZE_MAX, presented_ = 0, failed_index_ = 0;
   size_t triangles_done_ = 0;
-  bool presenting_ = false, in_flight_ = false, checking_ = true, failed_ = false;
+  std::deque<size_t> in_flight_;  // accepted, not yet recorded, oldest first
+  bool presenting_ = false, checking_ = true, failed_ = false, stopping_ = false;
   bool replay_ = false, hung_ = false;
   int reset_cycles_ = 3;
   int64_t stalls_ = 0, clock_cycles_ = 0, busy_cycles_ = 0, cycle_limit_ = 0;
@@ -328,12 +354,12 @@ int run_bench(const std::vector<Job>& jobs, const Widths& widths, const BenchOpt
   // spends exactly the model's clocks plus the stalls (when every triangle
   // matched; a failing one is drained unchecked).
   const int64_t clocks = bench.busy_span();
-  const int64_t model_clocks = scoreboard.model_clocks() + bench.total_stalls();
+  const int64_t model_clocks = scoreboard.model_cycles() + bench.total_stalls();
   const bool clocks_differ = !bench.failed() && !bench.hung() && clocks != model_clocks;
   if (clocks_differ)
     std::cout << fmt::format(
         "MISMATCH clocks (seed {}): {} clocks from the first triangle accepted to the last record "
-        "delivered; the model's cycles and handshakes plus {} stalls give {}\n",
+        "delivered; the model's schedule plus {} stalls gives {}\n",
         options.seed, clocks, bench.total_stalls(), model_clocks);
   const int64_t mismatches = scoreboard.mismatches() + (bench.hung() ? 1 : 0) + (clocks_differ ? 1 : 0);
 
@@ -362,7 +388,7 @@ int run_bench(const std::vector<Job>& jobs, const Widths& widths, const BenchOpt
       triangles, scoreboard.fragments_compared(), mismatches, scoreboard.rtl_cycles(),
       scoreboard.model_cycles(), seconds > 0 ? double(clock_cycles) / seconds : 0.0);
   std::cout << fmt::format("clocks from the first accept to the last record: {} (model {} + {} stalls)\n",
-                           clocks, scoreboard.model_clocks(), bench.total_stalls());
+                           clocks, scoreboard.model_cycles(), bench.total_stalls());
   std::cout << fmt::format("({} clock cycles simulated in {:.2f} s)\n", clock_cycles, seconds);
   if (BenchSummary* s = options.summary) {
     s->triangles = triangles;

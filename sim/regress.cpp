@@ -134,7 +134,9 @@ std::vector<int64_t> hang_limits(const std::vector<Job>& jobs, const Widths& wid
       unit = std::make_unique<ScanUnit>(*job.design, widths, job.viewport_width, job.viewport_height);
     fragments.clear();
     const TriangleRecord record = unit->run(job.triangle, &fragments);
-    limits.push_back(hang_cycle_limit(record.cycles, record.pixels, backpressure));
+    // Its clocks on this design's own schedule, plus a setup: at most what it
+    // takes from the last record to its own in any stream.
+    limits.push_back(hang_cycle_limit(record.cycles + unit->timing().setup_cycles(), record.pixels, backpressure));
   }
   return limits;
 }

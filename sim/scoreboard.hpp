@@ -6,6 +6,7 @@
 #pragma once
 
 #include <array>
+#include <deque>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -52,29 +53,42 @@ struct RtlRecord {
   uint32_t flags = 0;
 };
 
+// Triangles overlap in the unit (setup_fifo_depth = 1): the next one is set up
+// while the last one's fragments leave. The scoreboard keeps the triangles
+// accepted and not yet recorded in order: fragments, table writes and the
+// record belong to the oldest (the back end's; the table is filled only for
+// the triangle the back end has taken), setup results to the oldest whose
+// setup has not been seen.
 class Scoreboard {
  public:
-  Scoreboard(const Widths& widths, uint64_t seed) : widths_(widths), seed_(seed) {}
+  Scoreboard(const Widths& widths, uint64_t seed) : widths_(widths), seed_(seed), schedule_(widths) {}
 
-  // Runs the model on the job: its fragments and record become the expectation.
-  void begin(size_t index, const Job& job);
+  // A triangle accepted by the unit: the model runs it and places it on the
+  // unit's schedule; its fragments and record become the expectation.
+  void accept(size_t index, const Job& job);
   // Each returns false at a mismatch; mismatch() then describes it.
   bool setup(const RtlSetup& actual);
   bool table_write(const RtlTableWrite& actual);
   bool fragment(const RtlFragment& actual);
-  // stall_cycles: PIXEL cycles whose fragment the sink refused; the RTL counts
-  // them, the model does not.
+  // The oldest triangle's record. stall_cycles: the cycles since the last
+  // record in which the sink refused a fragment; the unit held for each, so
+  // the RTL counts them and the model does not.
   bool record(const RtlRecord& actual, int64_t stall_cycles);
+  // Forgets the triangles in flight and starts a new schedule (a replay from
+  // an idle unit).
+  void restart();
 
   const std::string& mismatch() const { return mismatch_; }
-  size_t triangle_index() const { return index_; }
+  // The triangle of the last mismatch.
+  size_t failed_index() const { return failed_index_; }
+  size_t in_flight() const { return pending_.size(); }
   int64_t fragments_compared() const { return fragments_compared_; }
   int64_t setups_compared() const { return setups_compared_; }
   int64_t writes_compared() const { return writes_compared_; }
+  // The model's clocks of the triangles recorded (their attribution on the
+  // schedule), and the RTL's record counts.
   int64_t model_cycles() const { return model_cycles_; }
   int64_t rtl_cycles() const { return rtl_cycles_; }
-  // The model's clocks of the triangles recorded: cycles plus handshakes.
-  int64_t model_clocks() const { return model_clocks_; }
   int64_t mismatches() const { return mismatches_; }
   // Triangles whose record raised each flag, and banded / y-major triangles:
   // evidence that a width configuration really exercises its corners.
@@ -84,22 +98,28 @@ class Scoreboard {
   int64_t y_major() const { return y_major_; }
 
  private:
-  bool fail(const std::string& where, const char* field, int64_t expected, int64_t actual);
+  struct Expected {
+    const Job* job = nullptr;
+    size_t index = 0;
+    std::vector<Fragment> fragments;
+    BlockTrace trace;
+    TriangleRecord record;
+    size_t next_fragment = 0, next_write = 0;
+    bool setup_seen = false;
+  };
+  bool fail(const Expected& e, const std::string& where, const char* field, int64_t expected, int64_t actual);
+  bool fail_unexpected(const std::string& what);
   ScanUnit& unit_for(const Job& job);
 
   Widths widths_;
   uint64_t seed_;
   std::map<std::tuple<std::string, int, int>, std::unique_ptr<ScanUnit>> units_;
-  const Job* job_ = nullptr;
-  size_t index_ = 0;
-  std::vector<Fragment> expected_;
-  BlockTrace trace_;
-  size_t next_write_ = 0;
-  bool setup_seen_ = false;
-  TriangleRecord expected_record_;
-  size_t next_ = 0;
+  UnitSchedule schedule_;  // one stream through the unit, whatever the designs
+  std::deque<Expected> pending_;
+  size_t setups_seen_ = 0;  // of the triangles in pending_, from the oldest
+  size_t failed_index_ = 0;
   int64_t setups_compared_ = 0, writes_compared_ = 0;
-  int64_t fragments_compared_ = 0, model_cycles_ = 0, model_clocks_ = 0, rtl_cycles_ = 0, mismatches_ = 0;
+  int64_t fragments_compared_ = 0, model_cycles_ = 0, rtl_cycles_ = 0, mismatches_ = 0;
   std::string mismatch_;
   std::array<int64_t, flag::kCount> flagged_{};
   int64_t y_major_ = 0;

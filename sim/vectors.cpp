@@ -158,6 +158,9 @@ int run_vectors_command(const VectorsOptions& given) {
         unit = std::make_unique<ScanUnit>(*job.design, widths, job.viewport_width, job.viewport_height);
       unit->trace_blocks(&trace);
       fragments.clear();
+      // The vector bench offers a triangle only when the last one is recorded:
+      // each starts from an idle unit.
+      unit->reset_schedule();
       const TriangleRecord record = unit->run(job.triangle, &fragments);
       triangles += triangle_word(job);
       setups += setup_word(trace.setup);

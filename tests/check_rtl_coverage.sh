@@ -46,7 +46,9 @@ def expect(cond, what):
     if not cond: failures.append(what)
 expect(cov["runs"] == runs, f"{runs} runs merged")
 uncovered = {u["point"] for u in cov["uncovered"] if u["type"] == "user"}
-for p in ["c_state_" + s for s in ("idle", "setup", "fill", "column", "pixel", "scan", "record", "drain")] + \
+for p in ["c_state_" + s for s in ("idle", "fill_wait", "init", "column", "pixel", "scan", "record", "drain")] + \
+         ["c_front_" + s for s in ("setup", "offer", "fill", "band_wait")] + \
+         ["c_setup_during_walk", "c_take_at_record", "c_hold_in_setup"] + \
          ["c_design_" + s for s in ("cd_none", "cd_linear", "cd_dense2", "cd_dense4", "cd_dense2_linear", "divide",
                                     "kim_iter", "kim_pipe", "affine_sub16", "affine_sub8", "affine")] + \
          ["c_fragment_stall", "c_flag_banded", "c_flag_table_saturated", "c_flag_output_saturated",

@@ -4,7 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <random>
 #include <tuple>
+#include <utility>
+#include <vector>
 
 #include "derived_widths.hpp"
 #include "kim_datapath.hpp"
@@ -157,11 +160,27 @@ TEST(UnitBehaviour, CyclesOfAHandWorkedTriangle) {
       {"cd-dense2-linear", kSetup + (17 + 4) + 8 + 28},
       {"divide", kSetup + 8 + 28 + 4},
   };
+  // The first triangle of a stream also holds the unit in its accept cycle and
+  // its record cycle, and at setup_fifo_depth 1 a per-pixel design spends a
+  // cycle loading the walker from the held setup results.
+  ASSERT_EQ(w.setup_fifo_depth, 1);
   for (const auto& [name, cycles] : expected) {
     TriangleRecord r;
     const auto fragments = testing::run_unit(find_design(name), w, 64, 64, t, &r);
     EXPECT_EQ(fragments.size(), 28u) << name;
-    EXPECT_EQ(r.cycles, cycles) << name;
+    const int64_t load = find_design(name).kind == Design::Kind::ConstantDepth ? 0 : 1;
+    EXPECT_EQ(r.cycles, 1 + cycles + load + 1) << name;
+    EXPECT_EQ(r.setup_cycles + r.fill_cycles + r.walk_cycles + r.record_cycles, r.cycles) << name;
+    EXPECT_EQ(r.setup_cycles, 1 + kSetup) << name;
+    EXPECT_EQ(r.record_cycles, 1) << name;
+  }
+  // Run one after another (setup_fifo_depth 0) there is no load cycle.
+  Widths serial = w;
+  serial.setup_fifo_depth = 0;
+  for (const auto& [name, cycles] : expected) {
+    TriangleRecord r;
+    testing::run_unit(find_design(name), serial, 64, 64, t, &r);
+    EXPECT_EQ(r.cycles, 1 + cycles + 1) << name;
   }
 }
 
@@ -174,7 +193,9 @@ TEST(UnitBehaviour, ZeroAreaAndEmptyBoxCostOnlySetup) {
   for (const auto& s : {line, between_centres}) {
     TriangleRecord r;
     EXPECT_TRUE(testing::run_unit(find_design("cd-linear"), w, 32, 32, to_unit(s, w, 0), &r).empty());
-    EXPECT_EQ(r.cycles, derive(w).setup_cycles);
+    // Accept, setup and record.
+    EXPECT_EQ(r.cycles, 1 + derive(w).setup_cycles + 1);
+    EXPECT_EQ(r.fill_cycles + r.walk_cycles, 0);
   }
 }
 
@@ -215,7 +236,10 @@ TEST(UnitBehaviour, KimAndAffineCyclesOfAHandWorkedTriangle) {
   // columns 0..6 hold 7, 6, ..., 1 covered pixels and column 7 none; down a
   // column I_u is constant and I_v moves 8 texels per pixel.
   Widths w;  // out_int 16 (span division), kim_frac 8, recip_latency 4
-  const int64_t kSetup = 4 + (43 + 3) / 4;  // as in CyclesOfAHandWorkedTriangle
+  // The first triangle of a stream at setup_fifo_depth 1: accept, setup, the
+  // walker's load cycle, the walk, and the record.
+  ASSERT_EQ(w.setup_fifo_depth, 1);
+  const int64_t kAroundWalk = 1 + (4 + (43 + 3) / 4) + 1 + 1;  // as in CyclesOfAHandWorkedTriangle
   const ScreenTriangle s = testing::screen_triangle(
       {{{{0, 0, 2.0, 0, 0}}, {{8, 0, 2.0, 64, 0}}, {{0, 8, 2.0, 0, 64}}}});
   const UnitTriangle t = to_unit(s, w, 0);
@@ -229,16 +253,16 @@ TEST(UnitBehaviour, KimAndAffineCyclesOfAHandWorkedTriangle) {
   // kim_frac - 1 more cycles for the last fragment.
   int64_t spans_8 = 0;  // each span: column, division, first pixel, 8 per later pixel
   for (int64_t n = 1; n <= 7; ++n) spans_8 += 1 + span_division + 1 + 8 * (n - 1);
-  const int64_t kim_pipe = kSetup + spans_8 + 1 + (8 - 1);
+  const int64_t kim_pipe = kAroundWalk + spans_8 + 1 + (8 - 1);
   // kim-iter: 8 fraction cycles never hold the integer stage back here (the
   // later pixels take 8 cycles anyway, the first one of a span 18 after the
   // span before's last), so it takes the same cycles.
   const int64_t kim_iter = kim_pipe;
   const std::pair<const char*, int64_t> expected[] = {
       {"kim-iter", kim_iter}, {"kim-pipe", kim_pipe},
-      {"affine", kSetup + columns + pixels},
-      {"affine-sub8", kSetup + columns + pixels + spans * 4},  // one segment per span: no stall
-      {"affine-sub16", kSetup + columns + pixels + spans * 4},
+      {"affine", kAroundWalk + columns + pixels},
+      {"affine-sub8", kAroundWalk + columns + pixels + spans * 4},  // one segment per span: no stall
+      {"affine-sub16", kAroundWalk + columns + pixels + spans * 4},
   };
   for (const auto& [name, cycles] : expected) {
     TriangleRecord r;
@@ -254,7 +278,7 @@ TEST(UnitBehaviour, KimAndAffineCyclesOfAHandWorkedTriangle) {
     for (int64_t n = 1; n <= 7; ++n) unrolled += 1 + span_division + 1 + 2 * (n - 1);
     TriangleRecord r;
     testing::run_unit(find_design("kim-pipe"), u, 64, 64, t, &r);
-    EXPECT_EQ(r.cycles, kSetup + unrolled + 1 + (8 - 1));
+    EXPECT_EQ(r.cycles, kAroundWalk + unrolled + 1 + (8 - 1));
   }
   // A slow iterative fraction stage (kim_frac 16) and a short division
   // (out_int 8, |u|, |v| <= 64 still fit): kim-iter hands off a pixel every 16
@@ -268,13 +292,13 @@ TEST(UnitBehaviour, KimAndAffineCyclesOfAHandWorkedTriangle) {
     const UnitTriangle ts = to_unit(s, slow, 0);
     TriangleRecord r;
     testing::run_unit(find_design("kim-iter"), slow, 64, 64, ts, &r);
-    EXPECT_EQ(r.cycles, kSetup + (1 + 8) + 16 * (pixels - 1) + 16 + 1);
+    EXPECT_EQ(r.cycles, kAroundWalk + (1 + 8) + 16 * (pixels - 1) + 16 + 1);
     // kim-pipe at the same widths: 1 + 8 + 1 + 8 (n - 1) per span, column 7,
     // then 16 - 1 cycles for the last fragment.
     int64_t pipe = 0;
     for (int64_t n = 1; n <= 7; ++n) pipe += 1 + 8 + 1 + 8 * (n - 1);
     testing::run_unit(find_design("kim-pipe"), slow, 64, 64, ts, &r);
-    EXPECT_EQ(r.cycles, kSetup + pipe + 1 + (16 - 1));
+    EXPECT_EQ(r.cycles, kAroundWalk + pipe + 1 + (16 - 1));
   }
 }
 
@@ -334,7 +358,9 @@ TEST(UnitBehaviour, AffineSubdivisionStallsWhenSegmentsAreShorterThanTheDivider)
   // 8, each segment after the first stalls 12 - 8 = 4 cycles.
   Widths w;
   w.recip_latency = 12;
-  const int64_t kSetup = 4 + (43 + 3) / 4;  // as in CyclesOfAHandWorkedTriangle
+  // Accept, setup, the walker's load cycle (setup_fifo_depth 1) and the record
+  // of the first triangle of a stream, as in CyclesOfAHandWorkedTriangle.
+  const int64_t kAroundWalk = 1 + (4 + (43 + 3) / 4) + 1 + 1;
   const ScreenTriangle s = testing::screen_triangle(
       {{{{0.2, 0.0, 1.0, 0, 0}}, {{0.8, 0.0, 1.0, 0, 0}}, {{0.5, 40.0, 1.0, 0, 40}}}});
   TriangleRecord r;
@@ -348,10 +374,18 @@ TEST(UnitBehaviour, AffineSubdivisionStallsWhenSegmentsAreShorterThanTheDivider)
   const int64_t segments = (pixels - 1 + 7) / 8;
   ASSERT_GE(segments, 3);
   const int64_t stalls = (segments - 1) * (12 - 8);
-  EXPECT_EQ(r.cycles, kSetup + 1 + pixels + 12 + stalls);
+  EXPECT_EQ(r.cycles, kAroundWalk + 1 + pixels + 12 + stalls);
 }
 
-TEST(UnitBehaviour, TimingLayerPricesWorkAndComputeSkipsIt) {
+// The cycles a triangle keeps the unit busy when it runs alone, after setup:
+// fill and walk, as the phases give them.
+int64_t busy_after_setup(const TrianglePhases& p) {
+  int64_t cycles = p.scan + p.walk;
+  for (const TrianglePhases::Band& band : p.bands) cycles += band.fill + band.walk;
+  return cycles;
+}
+
+TEST(UnitBehaviour, TimingLayerTurnsWorkIntoPhasesAndComputeSkipsIt) {
   // The timing layer alone, on work written by hand: two bands of 7 and 5
   // lines over 4 columns holding 3 + 0 + 2 + 1 and 1 + 1 + 0 + 0 pixels.
   Widths w;
@@ -362,40 +396,265 @@ TEST(UnitBehaviour, TimingLayerPricesWorkAndComputeSkipsIt) {
   work.columns = 4;
   work.band_lines = {7, 5};
   work.column_pixels = {3, 0, 2, 1, 1, 1, 0, 0};
-  const TriangleCycles cd = UnitTiming(find_design("cd-linear"), w).price(work);
-  EXPECT_EQ(cd.setup, kSetup);
-  EXPECT_EQ(cd.fill, (7 + 3) + (5 + 3));
-  EXPECT_EQ(cd.walk, 2 * 4 + 8);
+  const TrianglePhases cd = UnitTiming(find_design("cd-linear"), w).phases(work);
+  EXPECT_EQ(cd.kind, TrianglePhases::Kind::Bands);
+  ASSERT_EQ(cd.bands.size(), 2u);
+  EXPECT_EQ(cd.bands[0].fill, 7 + 3);
+  EXPECT_EQ(cd.bands[0].walk, 4 + 6);
+  EXPECT_EQ(cd.bands[1].fill, 5 + 3);
+  EXPECT_EQ(cd.bands[1].walk, 4 + 2);
+  // A box with no possible pixel line: one pass over the columns.
+  TriangleWork no_line = work;
+  no_line.band_lines.clear();
+  no_line.column_pixels = {0, 0, 0, 0};
+  const TrianglePhases scan = UnitTiming(find_design("cd-none"), w).phases(no_line);
+  EXPECT_EQ(scan.kind, TrianglePhases::Kind::Scan);
+  EXPECT_EQ(scan.scan, 4);
   // divide: one pass, drained once.
   work.band_lines.clear();
   work.column_pixels = {3, 0, 2, 1};
-  EXPECT_EQ(UnitTiming(find_design("divide"), w).price(work).total(), kSetup + 4 + 6 + 3);
+  const TrianglePhases divide = UnitTiming(find_design("divide"), w).phases(work);
+  EXPECT_EQ(divide.kind, TrianglePhases::Kind::Walk);
+  EXPECT_EQ(divide.walk, 4 + 6 + 3);
   // affine-sub8 with a 12-cycle divider: spans of 1, 9, 10 and 17 pixels have
   // 1, 1, 2 and 2 segments; each waits 12 cycles, each later segment 4 more.
   w.recip_latency = 12;
   work.column_pixels = {1, 9, 10, 17};
-  EXPECT_EQ(UnitTiming(find_design("affine-sub8"), w).price(work).walk, 4 + 37 + 4 * 12 + 2 * 4);
+  EXPECT_EQ(UnitTiming(find_design("affine-sub8"), w).phases(work).walk, 4 + 37 + 4 * 12 + 2 * 4);
   // A triangle that ends after setup.
-  EXPECT_EQ(UnitTiming(find_design("kim-pipe"), w).price(TriangleWork{}).total(), kSetup);
+  EXPECT_EQ(UnitTiming(find_design("kim-pipe"), w).phases(TriangleWork{}).kind, TrianglePhases::Kind::Empty);
 
-  // ScanUnit::compute gives run's values without cycles.
+  // ScanUnit::compute gives run's values without cycles and leaves the
+  // schedule alone: the run after it is the stream's first triangle (accept,
+  // setup, a per-pixel design's load cycle, fill and walk, record).
   const ScreenTriangle s = testing::screen_triangle(
       {{{{3.2, 4.7, 2.0, 10.0, 20.0}}, {{60.4, 10.1, 7.0, 90.5, 61.25}}, {{20.3, 50.9, 4.0, -30.75, 81.0}}}});
   const UnitTriangle t = to_unit(s, w, 0);
+  ASSERT_EQ(w.setup_fifo_depth, 1);
   for (const Design& d : all_designs()) {
     ScanUnit unit(d, w, 64, 64);
     std::vector<Fragment> computed, ran;
     const TriangleRecord c = unit.compute(t, &computed);
-    const TriangleWork work_of_compute = unit.work();
+    const TrianglePhases phases = unit.phases();
     const TriangleRecord r = unit.run(t, &ran);
     ASSERT_EQ(computed.size(), ran.size()) << d.name;
     EXPECT_EQ(c.cycles, 0) << d.name;
-    EXPECT_EQ(r.cycles, unit.timing().price(work_of_compute).total()) << d.name;
+    const int64_t load = phases.kind == TrianglePhases::Kind::Walk ? 1 : 0;
+    EXPECT_EQ(r.cycles, 1 + kSetup + load + busy_after_setup(phases) + 1) << d.name;
     EXPECT_EQ(c.pixels, r.pixels) << d.name;
     EXPECT_EQ(c.flags, r.flags) << d.name;
     int64_t pixels = 0;
-    for (const int32_t n : work_of_compute.column_pixels) pixels += n;
+    for (const int32_t n : unit.work().column_pixels) pixels += n;
     EXPECT_EQ(pixels, r.pixels) << d.name;
+  }
+}
+
+// Hand-written phases for the schedule tests.
+TrianglePhases empty_phases() { return TrianglePhases{}; }
+TrianglePhases scan_phases(int64_t columns) {
+  TrianglePhases p;
+  p.kind = TrianglePhases::Kind::Scan;
+  p.scan = columns;
+  return p;
+}
+TrianglePhases walk_phases(int64_t walk) {
+  TrianglePhases p;
+  p.kind = TrianglePhases::Kind::Walk;
+  p.walk = walk;
+  return p;
+}
+TrianglePhases band_phases(std::vector<TrianglePhases::Band> bands) {
+  TrianglePhases p;
+  p.kind = TrianglePhases::Kind::Bands;
+  p.bands = std::move(bands);
+  return p;
+}
+
+// Default widths: setup_cycles = 4 stages + 11 divider cycles (43 quotient
+// bits, 4 a cycle), as in CyclesOfAHandWorkedTriangle.
+Widths schedule_widths(int fifo_depth) {
+  Widths w;
+  w.setup_fifo_depth = fifo_depth;
+  return w;
+}
+constexpr int64_t kScheduleSetup = 15;
+
+TEST(UnitSchedule, OneAfterAnotherEachTriangleCostsSetupFillWalkAcceptAndRecord) {
+  const Widths w = schedule_widths(0);
+  ASSERT_EQ(derive(w).setup_cycles, kScheduleSetup);
+  UnitSchedule schedule(w);
+  // Without overlap each triangle holds the unit for its accept cycle, setup,
+  // fill and walk, and its record cycle, and the next is accepted after it.
+  struct Step {
+    TrianglePhases phases;
+    int64_t busy;    // fill + walk, by hand
+    int64_t record;  // its record cycle, by hand
+  };
+  const Step steps[] = {
+      {empty_phases(), 0, 0 + 15 + 1},                               // accepted in 0
+      {scan_phases(5), 5, 17 + 15 + 5 + 1},                          // accepted in 17
+      {walk_phases(20), 20, 39 + 15 + 20 + 1},                       // accepted in 39
+      {band_phases({{10, 12}, {8, 6}}), 36, 76 + 15 + 36 + 1},       // accepted in 76
+      {walk_phases(3), 3, 129 + 15 + 3 + 1},                         // accepted in 129
+  };
+  int64_t sum = 0;
+  for (const Step& step : steps) {
+    const TriangleCycles c = schedule.next(step.phases);
+    EXPECT_EQ(c.total(), kScheduleSetup + step.busy + 2);
+    EXPECT_EQ(c.setup, 1 + kScheduleSetup);
+    EXPECT_EQ(c.fill + c.walk, step.busy);
+    EXPECT_EQ(c.record, 1);
+    EXPECT_EQ(schedule.last().record, step.record);
+    sum += c.total();
+  }
+  // The scene's clocks: from the first accept (cycle 0) to the last record.
+  EXPECT_EQ(sum, 148 + 1);
+}
+
+TEST(UnitSchedule, OverlappedRunOfPerPixelTrianglesTakesTheSlowerOfSetupAndWalk) {
+  // Identical per-pixel triangles at setup_fifo_depth 1: the front end sets up
+  // the next while the back end walks, so in steady state a triangle takes
+  // max(setup_cycles, load + walk + record) = max(15, W + 2) cycles.
+  const Widths w = schedule_widths(1);
+  ASSERT_EQ(derive(w).setup_cycles, kScheduleSetup);
+  struct Case {
+    int64_t walk;
+    std::vector<int64_t> records;  // record cycles of 4 triangles, by hand
+    int64_t period;
+  };
+  const Case cases[] = {
+      // Walk-bound: accepted 0, 15, 37, 59; taken 15, 37, 59, 81.
+      {20, {37, 59, 81, 103}, 22},
+      // Setup-bound: accepted 0, 15, 30, 45; taken when set up, 15, 30, 45, 60.
+      {5, {22, 37, 52, 67}, 15},
+      // Balanced: W + 2 = 15, the back end takes each in its record cycle.
+      {13, {30, 45, 60, 75}, 15},
+  };
+  for (const Case& k : cases) {
+    UnitSchedule schedule(w);
+    int64_t sum = 0;
+    for (size_t i = 0; i < k.records.size(); ++i) {
+      const TriangleCycles c = schedule.next(walk_phases(k.walk));
+      EXPECT_EQ(schedule.last().record, k.records[i]) << "W " << k.walk << " triangle " << i;
+      EXPECT_EQ(c.walk, k.walk + 1) << "W " << k.walk;  // the load cycle, then the walk
+      EXPECT_EQ(c.record, 1);
+      // The first: accept, setup, load, walk, record. Then the period.
+      EXPECT_EQ(c.total(), i == 0 ? 1 + 15 + 1 + k.walk + 1 : k.period) << "W " << k.walk << " triangle " << i;
+      sum += c.total();
+    }
+    EXPECT_EQ(sum, k.records.back() + 1) << "W " << k.walk;
+  }
+  // Walk-bound: the back end never waits for setup after the first triangle.
+  UnitSchedule walk_bound(w);
+  walk_bound.next(walk_phases(20));
+  EXPECT_EQ(walk_bound.next(walk_phases(20)).setup, 0);
+  // Setup-bound: it waits 15 - (5 + 2) = 8 cycles a triangle.
+  UnitSchedule setup_bound(w);
+  EXPECT_EQ(setup_bound.next(walk_phases(5)).setup, 1 + 15);
+  EXPECT_EQ(setup_bound.next(walk_phases(5)).setup, 8);
+}
+
+TEST(UnitSchedule, OverlappedBandsHoldTheFrontEndUntilTheirLastFill) {
+  // Two bands (fill 10, walk 12; fill 8, walk 6) at setup_fifo_depth 1. The
+  // front end fills the bands, so it accepts the next triangle only in the
+  // cycle the last band's fill ends.
+  const Widths w = schedule_widths(1);
+  ASSERT_EQ(derive(w).setup_cycles, kScheduleSetup);
+  UnitSchedule schedule(w);
+  const TrianglePhases two_bands = band_phases({{10, 12}, {8, 6}});
+  // Triangle 0: accepted 0, set up by 15, taken 15; band 0 fills 16..25 and
+  // walks 26..37, band 1 fills 38..45 and walks 46..51; record 52.
+  TriangleCycles c = schedule.next(two_bands);
+  EXPECT_EQ(schedule.last().accept, 0);
+  EXPECT_EQ(schedule.last().taken, 15);
+  EXPECT_EQ(schedule.last().record, 52);
+  EXPECT_EQ(c.total(), 53);
+  EXPECT_EQ(c.setup, 16);
+  EXPECT_EQ(c.fill, 18);
+  EXPECT_EQ(c.walk, 18);
+  EXPECT_EQ(c.record, 1);
+  // Triangle 1, per-pixel walk 4: accepted 45, set up by 60, taken 60 (the
+  // back end has been free since 52), loads in 61, walks 62..65, record 66.
+  c = schedule.next(walk_phases(4));
+  EXPECT_EQ(schedule.last().accept, 45);
+  EXPECT_EQ(schedule.last().taken, 60);
+  EXPECT_EQ(schedule.last().record, 66);
+  EXPECT_EQ(c.total(), 66 - 52);
+  EXPECT_EQ(c.setup, 60 - 52);
+  EXPECT_EQ(c.walk, 1 + 4);
+  // Triangle 2, the two bands again: accepted 60, taken 75; fills 76..85,
+  // walks 86..97, fills 98..105, walks 106..111; record 112.
+  c = schedule.next(two_bands);
+  EXPECT_EQ(schedule.last().accept, 60);
+  EXPECT_EQ(schedule.last().record, 112);
+  EXPECT_EQ(c.total(), 112 - 66);
+  EXPECT_EQ(c.setup, 75 - 66);
+  // Triangle 3, empty: accepted 105 (triangle 2's last fill), taken 120, record 121.
+  c = schedule.next(empty_phases());
+  EXPECT_EQ(schedule.last().accept, 105);
+  EXPECT_EQ(schedule.last().record, 121);
+  EXPECT_EQ(c.total(), 121 - 112);
+  EXPECT_EQ(c.setup, 120 - 112);
+}
+
+TEST(UnitSchedule, TheFirstTriangleCountsFromItsAcceptAndResetStartsAgain) {
+  for (const int depth : {0, 1}) {
+    UnitSchedule schedule(schedule_widths(depth));
+    // Accept (cycle 0), setup 1..15, [load], walk, record.
+    const int64_t first = 1 + 15 + depth + 9 + 1;
+    EXPECT_EQ(schedule.next(walk_phases(9)).total(), first) << depth;
+    EXPECT_EQ(schedule.last().accept, 0) << depth;
+    EXPECT_EQ(schedule.last().record, first - 1) << depth;
+    schedule.next(scan_phases(3));
+    schedule.reset();
+    EXPECT_EQ(schedule.next(walk_phases(9)).total(), first) << depth;
+    EXPECT_EQ(schedule.last().accept, 0) << depth;
+    // An empty triangle first: accept, setup, record.
+    schedule.reset();
+    EXPECT_EQ(schedule.next(empty_phases()).total(), 1 + 15 + 1) << depth;
+  }
+}
+
+TEST(UnitSchedule, ClocksOfAStreamAddUpFromFirstAcceptToLastRecord) {
+  // Random streams of every kind: the triangles' clocks add up to the cycles
+  // from the first accept to the last record, both included. Overlapped, no
+  // triangle after the first costs more than it would run one after another
+  // (the first may cost its load cycle more).
+  std::mt19937_64 rng(12);
+  std::uniform_int_distribution<int> kind(0, 3), length(0, 40), bands(1, 3);
+  for (int stream = 0; stream < 50; ++stream) {
+    std::vector<TrianglePhases> phases;
+    for (int i = 0; i < 30; ++i) {
+      switch (kind(rng)) {
+        case 0: phases.push_back(empty_phases()); break;
+        case 1: phases.push_back(scan_phases(1 + length(rng))); break;
+        case 2: phases.push_back(walk_phases(1 + length(rng))); break;
+        default: {
+          std::vector<TrianglePhases::Band> b;
+          for (int n = bands(rng); n > 0; --n) b.push_back({5 + length(rng), 1 + length(rng)});
+          phases.push_back(band_phases(b));
+        }
+      }
+    }
+    for (const int depth : {0, 1}) {
+      UnitSchedule schedule(schedule_widths(depth));
+      int64_t sum = 0;
+      for (size_t i = 0; i < phases.size(); ++i) {
+        const TrianglePhases& p = phases[i];
+        const TriangleCycles c = schedule.next(p);
+        const int64_t serial = kScheduleSetup + busy_after_setup(p) + 2;
+        EXPECT_GE(c.setup, 0);
+        EXPECT_EQ(c.record, 1);
+        if (depth == 0) {
+          EXPECT_EQ(c.total(), serial) << "stream " << stream << " triangle " << i;
+        } else {
+          const bool first_walk = i == 0 && p.kind == TrianglePhases::Kind::Walk;
+          EXPECT_LE(c.total(), serial + (first_walk ? 1 : 0)) << "stream " << stream << " triangle " << i;
+        }
+        sum += c.total();
+      }
+      EXPECT_EQ(sum, schedule.last().record + 1) << "stream " << stream << " depth " << depth;
+    }
   }
 }
 

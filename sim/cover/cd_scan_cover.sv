@@ -9,6 +9,8 @@ module cd_scan_cover (
   input logic       clk_i,
   input logic       rst_ni,
   input logic [2:0] state_q,
+  input logic [2:0] front_q,
+  input logic       take,
   input logic [1:0] kind_q,
   input logic [2:0] segment_log2_q,
   input logic       kim_pipelined_q,
@@ -24,18 +26,29 @@ module cd_scan_cover (
   input logic [7:0] obs_setup_bits_o
   /* verilator lint_on UNUSEDSIGNAL */
 );
-  // The unit's states (cd_scan_unit.sv, StIdle .. StDrain).
-  c_state_idle:   cover property (@(posedge clk_i) rst_ni && state_q == 3'd0);
-  c_state_setup:  cover property (@(posedge clk_i) rst_ni && state_q == 3'd1);
-  c_state_fill:   cover property (@(posedge clk_i) rst_ni && state_q == 3'd2);
-  c_state_column: cover property (@(posedge clk_i) rst_ni && state_q == 3'd3);
-  c_state_pixel:  cover property (@(posedge clk_i) rst_ni && state_q == 3'd4);
-  c_state_scan:   cover property (@(posedge clk_i) rst_ni && state_q == 3'd5);
-  c_state_record: cover property (@(posedge clk_i) rst_ni && state_q == 3'd6);
-  c_state_drain:  cover property (@(posedge clk_i) rst_ni && state_q == 3'd7);
+  // The back's states (cd_scan_unit.sv, StIdle .. StDrain).
+  c_state_idle:      cover property (@(posedge clk_i) rst_ni && state_q == 3'd0);
+  c_state_fill_wait: cover property (@(posedge clk_i) rst_ni && state_q == 3'd1);
+  c_state_init:      cover property (@(posedge clk_i) rst_ni && state_q == 3'd2);
+  c_state_column:    cover property (@(posedge clk_i) rst_ni && state_q == 3'd3);
+  c_state_pixel:     cover property (@(posedge clk_i) rst_ni && state_q == 3'd4);
+  c_state_scan:      cover property (@(posedge clk_i) rst_ni && state_q == 3'd5);
+  c_state_record:    cover property (@(posedge clk_i) rst_ni && state_q == 3'd6);
+  c_state_drain:     cover property (@(posedge clk_i) rst_ni && state_q == 3'd7);
+  // The front's (FrIdle .. FrBandWait), and the overlap: the next triangle set
+  // up while the back walks, and taken in the cycle of the last one's record.
+  c_front_setup:      cover property (@(posedge clk_i) rst_ni && front_q == 3'd1);
+  c_front_offer:      cover property (@(posedge clk_i) rst_ni && front_q == 3'd2);
+  c_front_fill:       cover property (@(posedge clk_i) rst_ni && front_q == 3'd3);
+  c_front_band_wait:  cover property (@(posedge clk_i) rst_ni && front_q == 3'd4);
+  c_setup_during_walk: cover property (@(posedge clk_i) rst_ni && front_q == 3'd1 &&
+                                       (state_q == 3'd3 || state_q == 3'd4));
+  c_take_at_record:   cover property (@(posedge clk_i) rst_ni && take && state_q == 3'd6);
 
-  // Back-pressure: a fragment held by the sink (the bench never holds a record).
+  // Back-pressure: a fragment held by the sink (the bench never holds a record),
+  // and such a hold freezing a triangle in setup.
   c_fragment_stall: cover property (@(posedge clk_i) rst_ni && frag_valid_o && !frag_ready_i);
+  c_hold_in_setup:  cover property (@(posedge clk_i) rst_ni && frag_valid_o && !frag_ready_i && front_q == 3'd1);
 
   // Triangles finished with each flag (model/flags.hpp): a band refill sets
   // banded; the saturations are those of the table and of the output.
@@ -69,6 +82,6 @@ module cd_scan_cover (
 endmodule
 
 bind cd_scan_unit cd_scan_cover u_cover (
-  .clk_i, .rst_ni, .state_q, .kind_q, .segment_log2_q, .kim_pipelined_q, .density_log2_q,
+  .clk_i, .rst_ni, .state_q, .front_q, .take, .kind_q, .segment_log2_q, .kim_pipelined_q, .density_log2_q,
   .correction_q, .frag_valid_o, .frag_ready_i, .rec_valid_o, .rec_ready_i, .rec_flags_o,
   .obs_setup_valid_o, .obs_setup_bits_o);
