@@ -12,6 +12,26 @@ namespace cdsim {
 UnitTiming::UnitTiming(const Design& design, const Widths& widths)
     : design_(design), widths_(widths), setup_cycles_(derive(widths).setup_cycles) {}
 
+namespace {
+
+// The cycles of one pass over the columns when a span's last pixel cycle also
+// loads the next column's span (rtl/cd_scan_unit.sv, StPixel): one per pixel,
+// plus one for each column the walker evaluates in a column cycle of its own:
+// the pass's first column, every column without pixels, and every column
+// with pixels after one without.
+int64_t pass_cycles(std::vector<int32_t>::const_iterator first, std::vector<int32_t>::const_iterator last) {
+  int64_t cycles = 0;
+  bool previous_has_pixels = false;
+  for (auto column = first; column != last; ++column) {
+    cycles += *column;
+    if (*column == 0 || !previous_has_pixels) ++cycles;
+    previous_has_pixels = *column > 0;
+  }
+  return cycles;
+}
+
+}  // namespace
+
 TrianglePhases UnitTiming::phases(const TriangleWork& work) const {
   TrianglePhases p;
   if (!work.walked) return p;
@@ -24,23 +44,20 @@ TrianglePhases UnitTiming::phases(const TriangleWork& work) const {
         break;
       }
       // Fill: one line per cycle into the reciprocal pipeline, drained per band.
-      // Walk: one cycle per column of the band's pass, one per pixel.
+      // Walk: the band's pass over the columns.
       p.kind = TrianglePhases::Kind::Bands;
-      const auto columns = static_cast<size_t>(work.columns);
+      const auto columns = static_cast<std::ptrdiff_t>(work.columns);
       for (size_t band = 0; band < work.band_lines.size(); ++band) {
-        const auto pass = work.column_pixels.begin() + static_cast<std::ptrdiff_t>(band * columns);
-        const int64_t pixels = std::accumulate(pass, pass + static_cast<std::ptrdiff_t>(columns), int64_t{0});
-        p.bands.push_back({work.band_lines[band] + widths_.recip_latency, work.columns + pixels});
+        const auto pass = work.column_pixels.begin() + static_cast<std::ptrdiff_t>(band) * columns;
+        p.bands.push_back({work.band_lines[band] + widths_.recip_latency, pass_cycles(pass, pass + columns)});
       }
       break;
     }
-    case Design::Kind::Divide: {
-      // One cycle per column and per pixel, plus draining the reciprocal pipeline.
-      const int64_t pixels = std::accumulate(work.column_pixels.begin(), work.column_pixels.end(), int64_t{0});
+    case Design::Kind::Divide:
+      // The pass, plus draining the reciprocal pipeline.
       p.kind = TrianglePhases::Kind::Walk;
-      p.walk = work.columns + pixels + widths_.recip_latency;
+      p.walk = pass_cycles(work.column_pixels.begin(), work.column_pixels.end()) + widths_.recip_latency;
       break;
-    }
     case Design::Kind::Kim:
       p.kind = TrianglePhases::Kind::Walk;
       p.walk = walk_kim(work);
@@ -141,13 +158,15 @@ int64_t UnitTiming::walk_kim(const TriangleWork& work) const {
   return std::max(next_cycle, last_fragment + 1);
 }
 
-// One cycle per column and per pixel. Subdivided (affine-subN): a span waits
+// Plain affine: the pass over the columns (pass_cycles). Subdivided
+// (affine-subN): one cycle per column and per pixel, and a span waits
 // recip_latency cycles for its first two end points (issued in the column
 // cycle and the next); each later end point is issued as the segment before
 // its own starts, so a segment after the first waits
 // max(0, recip_latency - N) cycles for its end point (rtl/affine_sub_datapath.sv).
 int64_t UnitTiming::walk_affine(const TriangleWork& work) const {
   const int64_t segment = design_.subdivision;
+  if (segment == 0) return pass_cycles(work.column_pixels.begin(), work.column_pixels.end());
   int64_t cycles = work.columns;
   for (const int32_t span : work.column_pixels) {
     if (span == 0) continue;

@@ -199,7 +199,14 @@ module cd_scan_unit #(
   logic        b_correction_d, b_correction_q, correction_q;
   logic signed [LineBits-1:0] band_lo_d, band_lo_q, band_hi_d, band_hi_q;
   logic signed [BandBits-1:0] band_lines_d, band_lines_q;  // the band walked, guards included
-  logic [PixelBits-1:0] offset_d, offset_q;                 // column offset o
+  logic [PixelBits-1:0] offset_d, offset_q;                 // the walker's column offset o
+  // The span being walked: its column's offset, and whether that column is
+  // the band's last. The walker moves on as a span is loaded, so that in the
+  // span's last pixel cycle it already shows the next column.
+  logic [PixelBits-1:0] span_offset_d, span_offset_q;
+  logic        span_last_d, span_last_q;
+  logic        span_load;                         // a span is loaded this cycle
+  logic        pixel_moves;                       // the pixel being walked moves on this cycle
   logic [PixelBits-1:0] major_d, major_q;
   logic [PixelBits-1:0] minor_d, minor_q, last_d, last_q;
   logic signed [LineBits-1:0] line_shift_d, line_shift_q;
@@ -359,7 +366,7 @@ module cd_scan_unit #(
   ) u_column_walker (
     .clk_i,
     .rst_ni,
-    .active_i          (state_q == StColumn),
+    .active_i          (state_q == StColumn || state_q == StPixel),
     .init_i            (column_init),
     .advance_i         (column_advance),
     .offset_i          (offset_q),
@@ -417,7 +424,7 @@ module cd_scan_unit #(
       .own_entry_i       (own_entry),
       .neighbour_entry_i (neighbour_entry),
       .correct_i         (correction_q && direction_q != 2'sd0),
-      .offset_i          (offset_q),
+      .offset_i          (span_offset_q),
       .weight_i          (weight_q),
       .u_o               (table_u),
       .v_o               (table_v),
@@ -900,6 +907,9 @@ module cd_scan_unit #(
     band_hi_d = band_hi_q;
     band_lines_d = band_lines_q;
     offset_d = offset_q;
+    span_offset_d = span_offset_q;
+    span_last_d = span_last_q;
+    span_load = 1'b0;
     major_d = major_q;
     minor_d = minor_q;
     last_d = last_q;
@@ -920,6 +930,8 @@ module cd_scan_unit #(
     pixel_issue = 1'b0;
 
     last_column = (PixelBits+1)'(offset_q) == major_count - (PixelBits+1)'(1);
+    pixel_moves = mode_divide || (mode_kim && kim_handoff) ||
+                  (!mode_kim && frag_ready_i && (!mode_sub || sub_valid));
 
     unique case (state_q)
       StIdle: ;
@@ -940,17 +952,9 @@ module cd_scan_unit #(
         column_init = 1'b1;
       end
       StColumn: begin
-        major_d = column_major;
-        line_shift_d = column_line_shift;
-        direction_d = column_direction;
-        weight_d = column_weight;
-        minor_d = column_first;
-        last_d = column_last;
         if (column_has_pixels) begin
           state_d = StPixel;
-          read_minor_valid = !per_pixel;
-          read_minor = column_first;
-          plane_start = per_pixel;
+          span_load = 1'b1;
         end else if (last_column) begin
           band_done = 1'b1;
         end else begin
@@ -958,39 +962,32 @@ module cd_scan_unit #(
           column_advance = 1'b1;
         end
       end
-      StPixel: if (mode_divide || (mode_kim && kim_handoff)) begin
-        // divide issues the pixel into its pipeline, whose fragment leaves
-        // RecipLatency cycles later; Kim's integer stage hands its pixel to the
-        // fraction stage, which offers the fragment later.
-        pixel_issue = mode_divide;
-        if (minor_q == last_q) begin
-          if (last_column) begin
-            band_done = 1'b1;
-          end else begin
-            state_d = StColumn;
-            offset_d = offset_q + PixelBits'(1);
-            column_advance = 1'b1;
+      StPixel: begin
+        // The span's last pixel moves on (divide issues it into its pipeline,
+        // Kim hands it to the fraction stage, the others emit it): the band
+        // ends, or the next column's span is loaded in the same cycle when it
+        // has pixels (not for Kim and affine-subN, whose span start takes the
+        // walker's column cycle), or the walker evaluates it in COLUMN.
+        if (pixel_moves) begin
+          pixel_issue = mode_divide;
+          if (!mode_divide && !mode_kim) begin
+            pixels_d = pixels_q + CountBits'(1);
+            flags_d = flags_q | frag_flags;
           end
-        end else begin
-          minor_d = minor_q + PixelBits'(1);
-          plane_step = mode_divide;
-        end
-      end else if (!mode_divide && !mode_kim && frag_ready_i && (!mode_sub || sub_valid)) begin
-        pixels_d = pixels_q + CountBits'(1);
-        flags_d = flags_q | frag_flags;
-        if (minor_q == last_q) begin
-          if (last_column) begin
-            band_done = 1'b1;
+          if (minor_q == last_q) begin
+            if (span_last_q) begin
+              band_done = 1'b1;
+            end else if (column_has_pixels && !mode_kim && !mode_sub) begin
+              span_load = 1'b1;
+            end else begin
+              state_d = StColumn;
+            end
           end else begin
-            state_d = StColumn;
-            offset_d = offset_q + PixelBits'(1);
-            column_advance = 1'b1;
+            minor_d = minor_q + PixelBits'(1);
+            read_minor_valid = !per_pixel;
+            read_minor = minor_q + PixelBits'(1);
+            plane_step = mode_divide || mode_affine;
           end
-        end else begin
-          minor_d = minor_q + PixelBits'(1);
-          read_minor_valid = !per_pixel;
-          read_minor = minor_q + PixelBits'(1);
-          plane_step = mode_affine;
         end
       end
       StScan: begin
@@ -1008,6 +1005,26 @@ module cd_scan_unit #(
       StRecord: if (rec_ready_i) state_d = StIdle;
       default: state_d = StIdle;
     endcase
+
+    // A span loaded: the column's values, the first pixel's table read or
+    // plane start, and the walker moves on to the next column.
+    if (span_load) begin
+      major_d = column_major;
+      line_shift_d = column_line_shift;
+      direction_d = column_direction;
+      weight_d = column_weight;
+      minor_d = column_first;
+      last_d = column_last;
+      span_offset_d = offset_q;
+      span_last_d = last_column;
+      read_minor_valid = !per_pixel;
+      read_minor = column_first;
+      plane_start = per_pixel;
+      if (!last_column) begin
+        offset_d = offset_q + PixelBits'(1);
+        column_advance = 1'b1;
+      end
+    end
 
     // End of a band: the next band, or the record.
     if (band_done && mode_divide) begin
@@ -1083,7 +1100,7 @@ module cd_scan_unit #(
     // Table read for the next pixel: its line, and the neighbour line.
     read_line = (BandBits'($signed({1'b0, read_minor})) - BandBits'($signed({1'b0, minor_lo})))
                 <<< density_log2_q;
-    read_line = read_line - (state_q == StColumn ? BandBits'(column_line_shift) : BandBits'(line_shift_q));
+    read_line = read_line - (span_load ? BandBits'(column_line_shift) : BandBits'(line_shift_q));
     read_addr = read_line - (BandBits'(band_lo_q) - BandBits'($signed({1'b0, correction_q})));
   end
 
@@ -1100,7 +1117,7 @@ module cd_scan_unit #(
   assign read = read_minor_valid;
   assign own_addr = AddrBits'(read_addr);
   assign neighbour_read = read_minor_valid && correction_q &&
-                          (state_q == StColumn ? column_direction : direction_q) != 2'sd0;
+                          (span_load ? column_direction : direction_q) != 2'sd0;
   assign neighbour_addr = AddrBits'(read_addr + BandBits'(direction_d));
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -1134,6 +1151,8 @@ module cd_scan_unit #(
       band_hi_q <= '0;
       band_lines_q <= '0;
       offset_q <= '0;
+      span_offset_q <= '0;
+      span_last_q <= 1'b0;
       major_q <= '0;
       minor_q <= '0;
       last_q <= '0;
@@ -1166,6 +1185,8 @@ module cd_scan_unit #(
       band_hi_q <= band_hi_d;
       band_lines_q <= band_lines_d;
       offset_q <= offset_d;
+      span_offset_q <= span_offset_d;
+      span_last_q <= span_last_d;
       major_q <= major_d;
       minor_q <= minor_d;
       last_q <= last_d;

@@ -153,12 +153,16 @@ TEST(UnitBehaviour, CyclesOfAHandWorkedTriangle) {
   const ScreenTriangle s = testing::screen_triangle(
       {{{{0, 0, 2.0, 0, 0}}, {{8, 0, 2.0, 64, 0}}, {{0, 8, 2.0, 0, 64}}}});
   const UnitTriangle t = to_unit(s, w, 0);
+  // The walk: one cycle per pixel, and a column cycle for column 0 (the first)
+  // and column 7 (no pixel); columns 1..6 are loaded in the last pixel cycle
+  // of the span before (rtl/cd_scan_unit.sv, StPixel).
+  const int64_t kColumnCycles = 2;
   const std::pair<const char*, int64_t> expected[] = {
-      {"cd-none", kSetup + (8 + 4) + 8 + 28},
-      {"cd-linear", kSetup + (10 + 4) + 8 + 28},
-      {"cd-dense2", kSetup + (15 + 4) + 8 + 28},        // lines 0..14 at half-pixel spacing
-      {"cd-dense2-linear", kSetup + (17 + 4) + 8 + 28},
-      {"divide", kSetup + 8 + 28 + 4},
+      {"cd-none", kSetup + (8 + 4) + kColumnCycles + 28},
+      {"cd-linear", kSetup + (10 + 4) + kColumnCycles + 28},
+      {"cd-dense2", kSetup + (15 + 4) + kColumnCycles + 28},        // lines 0..14 at half-pixel spacing
+      {"cd-dense2-linear", kSetup + (17 + 4) + kColumnCycles + 28},
+      {"divide", kSetup + kColumnCycles + 28 + 4},
   };
   // The first triangle of a stream also holds the unit in its accept cycle and
   // its record cycle, and at setup_fifo_depth 1 a per-pixel design spends a
@@ -260,7 +264,10 @@ TEST(UnitBehaviour, KimAndAffineCyclesOfAHandWorkedTriangle) {
   const int64_t kim_iter = kim_pipe;
   const std::pair<const char*, int64_t> expected[] = {
       {"kim-iter", kim_iter}, {"kim-pipe", kim_pipe},
-      {"affine", kAroundWalk + columns + pixels},
+      // Plain affine loads a span in the last pixel cycle of the one before:
+      // column cycles for columns 0 and 7 only. The subdivided designs and Kim
+      // take a column cycle for every span (their span start needs it).
+      {"affine", kAroundWalk + 2 + pixels},
       {"affine-sub8", kAroundWalk + columns + pixels + spans * 4},  // one segment per span: no stall
       {"affine-sub16", kAroundWalk + columns + pixels + spans * 4},
   };
@@ -400,9 +407,11 @@ TEST(UnitBehaviour, TimingLayerTurnsWorkIntoPhasesAndComputeSkipsIt) {
   EXPECT_EQ(cd.kind, TrianglePhases::Kind::Bands);
   ASSERT_EQ(cd.bands.size(), 2u);
   EXPECT_EQ(cd.bands[0].fill, 7 + 3);
-  EXPECT_EQ(cd.bands[0].walk, 4 + 6);
+  // A column cycle for the pass's first column, for each empty column and for
+  // a column after an empty one: 3 of 4 in either pass.
+  EXPECT_EQ(cd.bands[0].walk, 3 + 6);
   EXPECT_EQ(cd.bands[1].fill, 5 + 3);
-  EXPECT_EQ(cd.bands[1].walk, 4 + 2);
+  EXPECT_EQ(cd.bands[1].walk, 3 + 2);
   // A box with no possible pixel line: one pass over the columns.
   TriangleWork no_line = work;
   no_line.band_lines.clear();
@@ -415,7 +424,7 @@ TEST(UnitBehaviour, TimingLayerTurnsWorkIntoPhasesAndComputeSkipsIt) {
   work.column_pixels = {3, 0, 2, 1};
   const TrianglePhases divide = UnitTiming(find_design("divide"), w).phases(work);
   EXPECT_EQ(divide.kind, TrianglePhases::Kind::Walk);
-  EXPECT_EQ(divide.walk, 4 + 6 + 3);
+  EXPECT_EQ(divide.walk, 3 + 6 + 3);
   // affine-sub8 with a 12-cycle divider: spans of 1, 9, 10 and 17 pixels have
   // 1, 1, 2 and 2 segments; each waits 12 cycles, each later segment 4 more.
   w.recip_latency = 12;
