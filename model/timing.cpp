@@ -83,6 +83,7 @@ void UnitSchedule::reset() {
 TriangleCycles UnitSchedule::next(const TrianglePhases& phases) {
   int64_t accept = front_free_;
   if (fifo_depth_ == 0 && started_) accept = std::max(accept, last_.record + 1);
+  if (offer_after_record_ && started_) accept = std::max(accept, last_.record);
   const int64_t setup_done = accept + setup_cycles_;  // the last setup cycle: offered from here
   const int64_t taken = std::max(setup_done, back_free_);
   TriangleCycles c;

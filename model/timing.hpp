@@ -134,10 +134,15 @@ class UnitSchedule {
   const ScheduledTriangle& last() const { return last_; }
   // Starts a new stream: the next triangle is accepted in cycle 0.
   void reset();
+  // The source offers each triangle only from the cycle the previous one's
+  // record is delivered (the vector bench, tests/vectors), not as soon as the
+  // previous one is accepted (the regress bench, the default).
+  void offer_after_record(bool on) { offer_after_record_ = on; }
 
  private:
   int64_t setup_cycles_;
   int64_t fifo_depth_;
+  bool offer_after_record_ = false;
   int64_t front_free_ = 0;  // first cycle the front end may accept a triangle
   int64_t back_free_ = 0;   // first cycle the back end may take a triangle
   bool started_ = false;    // a triangle has been placed, so last_.record holds

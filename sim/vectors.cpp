@@ -151,6 +151,8 @@ int run_vectors_command(const VectorsOptions& given) {
     std::map<std::tuple<std::string, int, int>, std::unique_ptr<ScanUnit>> units;
     std::vector<Fragment> fragments;
     BlockTrace trace;
+    UnitSchedule schedule(widths);
+    schedule.offer_after_record(true);
     for (const Job& job : jobs) {
       throw_if_interrupted();
       auto& unit = units[{job.design->name, job.viewport_width, job.viewport_height}];
@@ -158,10 +160,10 @@ int run_vectors_command(const VectorsOptions& given) {
         unit = std::make_unique<ScanUnit>(*job.design, widths, job.viewport_width, job.viewport_height);
       unit->trace_blocks(&trace);
       fragments.clear();
-      // The vector bench offers a triangle only when the last one is recorded:
-      // each starts from an idle unit.
-      unit->reset_schedule();
-      const TriangleRecord record = unit->run(job.triangle, &fragments);
+      // One stream through the unit, whose source (the vector bench) offers a
+      // triangle in the cycle the last one's record is delivered.
+      TriangleRecord record = unit->compute(job.triangle, &fragments);
+      record.cycles = schedule.next(unit->phases()).total();
       triangles += triangle_word(job);
       setups += setup_word(trace.setup);
       for (const TableWrite& w : trace.writes)

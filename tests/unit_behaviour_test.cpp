@@ -392,6 +392,28 @@ int64_t busy_after_setup(const TrianglePhases& p) {
   return cycles;
 }
 
+TEST(UnitSchedule, ASourceThatWaitsForEachRecordLosesTheOverlap) {
+  // Two per-pixel triangles of 20 walk cycles at setup_fifo_depth 1, S = 15.
+  // Offered back to back: the first is accepted in cycle 0, taken in 15, loads
+  // the walker in 16, walks 17..36 and records in 37; the second, accepted in
+  // 15 (the take), is set up by 30 and taken in 37, records in 37 + 22 = 59.
+  // Offered only from the first record's cycle on: accepted in 37, taken in
+  // 52, recorded in 74.
+  Widths w;
+  ASSERT_EQ(derive(w).setup_cycles, 15);
+  ASSERT_EQ(w.setup_fifo_depth, 1);
+  TrianglePhases walk;
+  walk.kind = TrianglePhases::Kind::Walk;
+  walk.walk = 20;
+  UnitSchedule back_to_back(w), after_record(w);
+  after_record.offer_after_record(true);
+  EXPECT_EQ(back_to_back.next(walk).total(), 38);
+  EXPECT_EQ(back_to_back.next(walk).total(), 59 - 37);
+  EXPECT_EQ(after_record.next(walk).total(), 38);
+  EXPECT_EQ(after_record.next(walk).total(), 74 - 37);
+  EXPECT_EQ(after_record.last().accept, 37);
+}
+
 TEST(UnitBehaviour, TimingLayerTurnsWorkIntoPhasesAndComputeSkipsIt) {
   // The timing layer alone, on work written by hand: two bands of 7 and 5
   // lines over 4 columns holding 3 + 0 + 2 + 1 and 1 + 1 + 0 + 0 pixels.
