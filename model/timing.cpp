@@ -14,18 +14,41 @@ UnitTiming::UnitTiming(const Design& design, const Widths& widths)
 
 namespace {
 
-// The cycles of one pass over the columns when a span's last pixel cycle also
-// loads the next column's span (rtl/cd_scan_unit.sv, StPixel): one per pixel,
-// plus one for each column the walker evaluates in a column cycle of its own:
-// the pass's first column, every column without pixels, and every column
-// with pixels after one without.
+// The cycles of one pass over the columns (rtl/cd_scan_unit.sv, StColumn and
+// StPixel) for the designs whose walker loads spans ahead: one cycle per
+// pixel, and a column cycle for each column the walker evaluates on its own.
+// The walker runs a column ahead of the span: in each pixel cycle but the
+// span's last it passes over a column without pixels (not the last column);
+// in the span's last pixel cycle it loads the next span if its column has
+// pixels, ends the pass if it stands on the last column without any, and
+// otherwise hands over to column cycles, one per column, until a column with
+// pixels (loaded in its column cycle) or the last column.
 int64_t pass_cycles(std::vector<int32_t>::const_iterator first, std::vector<int32_t>::const_iterator last) {
+  const auto columns = static_cast<size_t>(last - first);
+  auto pixels = [&](size_t c) { return static_cast<int64_t>(first[static_cast<std::ptrdiff_t>(c)]); };
   int64_t cycles = 0;
-  bool previous_has_pixels = false;
-  for (auto column = first; column != last; ++column) {
-    cycles += *column;
-    if (*column == 0 || !previous_has_pixels) ++cycles;
-    previous_has_pixels = *column > 0;
+  size_t column = 0;
+  while (column < columns) {
+    ++cycles;  // a column cycle
+    if (pixels(column) == 0) {
+      ++column;
+      continue;
+    }
+    size_t span = column;
+    while (true) {
+      cycles += pixels(span);
+      if (span + 1 == columns) return cycles;
+      size_t walker = span + 1;
+      for (int64_t skips = pixels(span) - 1; skips > 0 && pixels(walker) == 0 && walker + 1 < columns; --skips)
+        ++walker;
+      if (pixels(walker) > 0) {
+        span = walker;
+        continue;
+      }
+      if (walker + 1 == columns) return cycles;
+      column = walker;
+      break;
+    }
   }
   return cycles;
 }

@@ -207,6 +207,7 @@ module cd_scan_unit #(
   logic        span_last_d, span_last_q;
   logic        span_load;                         // a span is loaded this cycle
   logic        pixel_moves;                       // the pixel being walked moves on this cycle
+  logic        span_ahead;                        // the walker loads spans ahead (not Kim, affine-subN)
   logic [PixelBits-1:0] major_d, major_q;
   logic [PixelBits-1:0] minor_d, minor_q, last_d, last_q;
   logic signed [LineBits-1:0] line_shift_d, line_shift_q;
@@ -930,6 +931,7 @@ module cd_scan_unit #(
     pixel_issue = 1'b0;
 
     last_column = (PixelBits+1)'(offset_q) == major_count - (PixelBits+1)'(1);
+    span_ahead = !mode_kim && !mode_sub;
     pixel_moves = mode_divide || (mode_kim && kim_handoff) ||
                   (!mode_kim && frag_ready_i && (!mode_sub || sub_valid));
 
@@ -963,11 +965,14 @@ module cd_scan_unit #(
         end
       end
       StPixel: begin
-        // The span's last pixel moves on (divide issues it into its pipeline,
-        // Kim hands it to the fraction stage, the others emit it): the band
-        // ends, or the next column's span is loaded in the same cycle when it
-        // has pixels (not for Kim and affine-subN, whose span start takes the
-        // walker's column cycle), or the walker evaluates it in COLUMN.
+        // A pixel moves on (divide issues it into its pipeline, Kim hands it to
+        // the fraction stage, the others emit it). Meanwhile the walker, a
+        // column ahead, passes over columns without pixels, one a cycle. At
+        // the span's last pixel the band ends, or the walker's column is
+        // loaded in the same cycle when it has pixels, or the band ends when
+        // the walker stands on the last column and it has none; otherwise the
+        // walker evaluates its column in COLUMN. Kim and affine-subN always go
+        // to COLUMN: their span start takes the walker's column cycle.
         if (pixel_moves) begin
           pixel_issue = mode_divide;
           if (!mode_divide && !mode_kim) begin
@@ -977,8 +982,10 @@ module cd_scan_unit #(
           if (minor_q == last_q) begin
             if (span_last_q) begin
               band_done = 1'b1;
-            end else if (column_has_pixels && !mode_kim && !mode_sub) begin
+            end else if (column_has_pixels && span_ahead) begin
               span_load = 1'b1;
+            end else if (last_column && span_ahead) begin
+              band_done = 1'b1;
             end else begin
               state_d = StColumn;
             end
@@ -987,6 +994,10 @@ module cd_scan_unit #(
             read_minor_valid = !per_pixel;
             read_minor = minor_q + PixelBits'(1);
             plane_step = mode_divide || mode_affine;
+            if (span_ahead && !column_has_pixels && !last_column) begin
+              offset_d = offset_q + PixelBits'(1);
+              column_advance = 1'b1;
+            end
           end
         end
       end

@@ -154,9 +154,10 @@ TEST(UnitBehaviour, CyclesOfAHandWorkedTriangle) {
       {{{{0, 0, 2.0, 0, 0}}, {{8, 0, 2.0, 64, 0}}, {{0, 8, 2.0, 0, 64}}}});
   const UnitTriangle t = to_unit(s, w, 0);
   // The walk: one cycle per pixel, and a column cycle for column 0 (the first)
-  // and column 7 (no pixel); columns 1..6 are loaded in the last pixel cycle
-  // of the span before (rtl/cd_scan_unit.sv, StPixel).
-  const int64_t kColumnCycles = 2;
+  // only: columns 1..6 are loaded in the last pixel cycle of the span before,
+  // and in column 6's, the walker stands on column 7, the last, without a
+  // pixel, so the pass ends (rtl/cd_scan_unit.sv, StPixel).
+  const int64_t kColumnCycles = 1;
   const std::pair<const char*, int64_t> expected[] = {
       {"cd-none", kSetup + (8 + 4) + kColumnCycles + 28},
       {"cd-linear", kSetup + (10 + 4) + kColumnCycles + 28},
@@ -264,10 +265,10 @@ TEST(UnitBehaviour, KimAndAffineCyclesOfAHandWorkedTriangle) {
   const int64_t kim_iter = kim_pipe;
   const std::pair<const char*, int64_t> expected[] = {
       {"kim-iter", kim_iter}, {"kim-pipe", kim_pipe},
-      // Plain affine loads a span in the last pixel cycle of the one before:
-      // column cycles for columns 0 and 7 only. The subdivided designs and Kim
-      // take a column cycle for every span (their span start needs it).
-      {"affine", kAroundWalk + 2 + pixels},
+      // Plain affine loads a span in the last pixel cycle of the one before: a
+      // column cycle for column 0 only. The subdivided designs and Kim take a
+      // column cycle for every column (their span start needs it).
+      {"affine", kAroundWalk + 1 + pixels},
       {"affine-sub8", kAroundWalk + columns + pixels + spans * 4},  // one segment per span: no stall
       {"affine-sub16", kAroundWalk + columns + pixels + spans * 4},
   };
@@ -429,9 +430,13 @@ TEST(UnitBehaviour, TimingLayerTurnsWorkIntoPhasesAndComputeSkipsIt) {
   EXPECT_EQ(cd.kind, TrianglePhases::Kind::Bands);
   ASSERT_EQ(cd.bands.size(), 2u);
   EXPECT_EQ(cd.bands[0].fill, 7 + 3);
-  // A column cycle for the pass's first column, for each empty column and for
-  // a column after an empty one: 3 of 4 in either pass.
-  EXPECT_EQ(cd.bands[0].walk, 3 + 6);
+  // Pass 1: a column cycle loads column 0; in the first two of its three pixel
+  // cycles the walker passes over column 1 (empty), so columns 2 and 3 are
+  // loaded in the last pixel cycles before them: 1 column cycle. Pass 2:
+  // column 0's cycle, column 1 loaded in column 0's pixel cycle; column 1's
+  // single pixel cycle leaves no cycle to pass over column 2, so columns 2
+  // and 3 take a column cycle each: 3.
+  EXPECT_EQ(cd.bands[0].walk, 1 + 6);
   EXPECT_EQ(cd.bands[1].fill, 5 + 3);
   EXPECT_EQ(cd.bands[1].walk, 3 + 2);
   // A box with no possible pixel line: one pass over the columns.
@@ -446,7 +451,7 @@ TEST(UnitBehaviour, TimingLayerTurnsWorkIntoPhasesAndComputeSkipsIt) {
   work.column_pixels = {3, 0, 2, 1};
   const TrianglePhases divide = UnitTiming(find_design("divide"), w).phases(work);
   EXPECT_EQ(divide.kind, TrianglePhases::Kind::Walk);
-  EXPECT_EQ(divide.walk, 3 + 6 + 3);
+  EXPECT_EQ(divide.walk, 1 + 6 + 3);
   // affine-sub8 with a 12-cycle divider: spans of 1, 9, 10 and 17 pixels have
   // 1, 1, 2 and 2 segments; each waits 12 cycles, each later segment 4 more.
   w.recip_latency = 12;
