@@ -24,7 +24,7 @@ ScanUnit::ScanUnit(const Design& design, const Widths& widths, int viewport_widt
 
 TriangleRecord ScanUnit::run(const UnitTriangle& triangle, std::vector<Fragment>* fragments) {
   TriangleRecord record = compute(triangle, fragments);
-  const TriangleCycles c = schedule_.next(timing_.phases(work_));
+  const TriangleCycles c = schedule_.next(phases());
   record.setup_cycles = c.setup;
   record.fill_cycles = c.fill;
   record.walk_cycles = c.walk;

@@ -63,9 +63,6 @@ class ScanUnit {
   const TriangleWork& work() const { return work_; }
   TrianglePhases phases() const { return timing_.phases(work_); }
   const UnitTiming& timing() const { return timing_; }
-  const UnitSchedule& schedule() const { return schedule_; }
-  // Starts a new stream: the next run() is accepted in cycle 0.
-  void reset_schedule() { schedule_.reset(); }
 
   const ScanlineTable& table() const { return table_; }
   // When set, run() records the setup and every table write of the triangle.

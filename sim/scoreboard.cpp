@@ -29,7 +29,7 @@ void Scoreboard::accept(size_t index, const Job& job) {
   unit.trace_blocks(&e.trace);
   e.record = unit.compute(job.triangle, &e.fragments);
   unit.trace_blocks(nullptr);
-  const TriangleCycles c = schedule_.next(unit.timing().phases(unit.work()));
+  const TriangleCycles c = schedule_.next(unit.phases());
   e.record.cycles = c.total();
 }
 
