@@ -192,7 +192,7 @@ UnitConfig prepare_unit(const Design& design, const Widths& widths, const AreaOp
   const fs::path cache = options.cache_dir.empty() ? cache_root("area") : fs::path(options.cache_dir);
   c.dir = cache / fmt::format("{:016x}", hash);
   fs::create_directories(c.dir);
-  c.sram_depth = c.has_table ? int64_t{widths.table_depth} << log2_ceil(design.density) : 0;
+  c.sram_depth = c.has_table ? (int64_t{widths.table_depth} << log2_ceil(design.density)) * widths.table_banks : 0;
   c.word_bits = derived.word_bits;
   c.flop_lines = std::min<int64_t>(c.sram_depth, 64);  // 0: no table
 
@@ -231,7 +231,7 @@ nlohmann::json block_areas(const std::map<std::string, ModuleStat>& unit, const 
       {"correction_adder", "correction adder"}, {"plane_accumulator", "plane accumulators"},
       {"pixel_divide", "pixel multiply"},   {"affine_setup", "affine setup"},
       {"shift_round", "output rounding"},   {"affine_sub_datapath", "subdivision datapath"},
-      {"kim_datapath", "Kim datapath"}};
+      {"kim_datapath", "Kim datapath"},     {"context_register", "contexts"}};
   std::vector<std::string> order;
   std::map<std::string, Subtree> totals;
   const auto add = [&](const std::string& name, double area, int64_t flops) {

@@ -39,7 +39,7 @@ DesignResult evaluate(const PreparedScene& prepared, const Design& design, const
   if (design.kind == Design::Kind::ConstantDepth) {
     result.table_depth = widths.table_depth * design.density;
     result.table_word_bits = widths.table_word_bits();
-    result.table_bits = int64_t{result.table_depth} * result.table_word_bits;
+    result.table_bits = int64_t{result.table_depth} * widths.table_banks * result.table_word_bits;
   }
   std::vector<float> errors;
   double sum = 0, sum_squares = 0;

@@ -94,11 +94,16 @@ TrianglePhases UnitTiming::phases(const TriangleWork& work) const {
 }
 
 UnitSchedule::UnitSchedule(const Widths& widths)
-    : setup_cycles_(derive(widths).setup_cycles), fifo_depth_(widths.setup_fifo_depth) {}
+    : setup_cycles_(derive(widths).setup_cycles),
+      fifo_depth_(widths.setup_fifo_depth),
+      banks_(widths.table_banks) {}
 
 void UnitSchedule::reset() {
   front_free_ = 0;
+  slot_free_ = 0;
   back_free_ = 0;
+  bands_ = 0;
+  band_done_.fill(-1);
   started_ = false;
   last_ = ScheduledTriangle{};
 }
@@ -107,11 +112,14 @@ TriangleCycles UnitSchedule::next(const TrianglePhases& phases) {
   int64_t accept = front_free_;
   if (fifo_depth_ == 0 && started_) accept = std::max(accept, last_.record + 1);
   if (offer_after_record_ && started_) accept = std::max(accept, last_.record);
-  const int64_t setup_done = accept + setup_cycles_;  // the last setup cycle: offered from here
-  const int64_t taken = std::max(setup_done, back_free_);
+  const int64_t offered = accept + setup_cycles_;  // the last setup cycle (after the accept cycle): offered from here
+  // With the fill stage (depth 2) the triangle moves into it first, and the
+  // back end takes it from there one cycle later at the earliest.
+  const int64_t staged = fifo_depth_ > 1 ? std::max(offered, slot_free_) : offered;
+  const int64_t taken = std::max(fifo_depth_ > 1 ? staged + 1 : staged, back_free_);
   TriangleCycles c;
   int64_t record = taken + 1;
-  int64_t leaves_front = taken;  // the cycle the front end is free for the next triangle
+  int64_t fill_end = -1;  // the last band's last fill cycle
   switch (phases.kind) {
     case TrianglePhases::Kind::Empty: break;
     case TrianglePhases::Kind::Scan:
@@ -124,16 +132,26 @@ TriangleCycles UnitSchedule::next(const TrianglePhases& phases) {
       record = taken + c.walk + 1;
       break;
     case TrianglePhases::Kind::Bands: {
-      // Each band fills in the cycles after `cycle`, then walks; the next band's
-      // fill waits for this band's walk, which reads the table.
-      int64_t cycle = taken;
+      // The fill stage decides in `decided` (the cycle it starts the triangle,
+      // or the previous band's last fill cycle) and fills from the next cycle,
+      // once its bank's previous band has been walked. The back end waits for
+      // each band from `waits` and walks it from the cycle after its last fill
+      // cycle.
+      int64_t decided = fifo_depth_ > 1 ? staged : taken;
+      int64_t waits = taken + 1;
       for (const TrianglePhases::Band& band : phases.bands) {
-        leaves_front = cycle + band.fill;
-        cycle += band.fill + band.walk;
-        c.fill += band.fill;
+        int64_t& bank_done = band_done_[static_cast<size_t>(bands_++ % banks_)];
+        const int64_t fill_start = std::max(decided, bank_done) + 1;
+        const int64_t fill_last = fill_start + band.fill - 1;
+        const int64_t walk_start = std::max(waits, fill_last) + 1;
+        bank_done = walk_start + band.walk - 1;
+        c.fill += walk_start - waits;
         c.walk += band.walk;
+        decided = fill_last;
+        waits = bank_done + 1;
       }
-      record = cycle + 1;
+      fill_end = decided;
+      record = waits;
       break;
     }
   }
@@ -141,7 +159,17 @@ TriangleCycles UnitSchedule::next(const TrianglePhases& phases) {
   // triangle: from its accept) to the cycle it took this triangle.
   c.setup = started_ ? taken - last_.record : taken - accept + 1;
   c.record = 1;
-  front_free_ = leaves_front;
+  // The setup engine is free again in the cycle its triangle leaves it: into
+  // the fill stage (depth 2), or to the back end, or, when the table is
+  // filled from the setup engine's registers (depth 0 and 1), at the last
+  // band's last fill cycle. The fill stage is free once the back end has taken
+  // its triangle and its last band is filled.
+  if (fifo_depth_ > 1) {
+    front_free_ = staged;
+    slot_free_ = std::max(taken, fill_end);
+  } else {
+    front_free_ = phases.kind == TrianglePhases::Kind::Bands ? fill_end : taken;
+  }
   back_free_ = record;
   last_ = {accept, taken, record};
   started_ = true;

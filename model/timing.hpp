@@ -21,6 +21,7 @@
 // back-pressure).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -114,16 +115,24 @@ struct ScheduledTriangle {
 };
 
 // One stream of triangles through one unit (one design, or a regress stream
-// of designs in turn), with no back-pressure. The front end accepts a
-// triangle, sets it up in setup_cycles and offers it to the back end from its
-// last setup cycle; the back end takes it then or, if later, in the previous
-// triangle's record cycle. With setup_fifo_depth = 1 the front end accepts the
-// next triangle in the cycle it is free again: the cycle the back end takes
-// this one or, when the table is filled (by the front end, band by band
-// between the back end's walks), the cycle the last band's fill ends. With
-// setup_fifo_depth = 0 it accepts a triangle only in the cycle after the
-// previous one's record: setup, fill and walk in turn, as before overlap.
-// Exactly the RTL's rule (rtl/cd_scan_unit.sv).
+// of designs in turn), with no back-pressure. Exactly the RTL's rules
+// (rtl/cd_scan_unit.sv, docs/microarchitecture.md):
+// - The setup engine accepts a triangle, sets it up in setup_cycles and
+//   offers it from its last setup cycle.
+// - setup_fifo_depth 0 and 1: the back end takes it then or, if later, in the
+//   previous triangle's record cycle. A constant-depth triangle's bands are
+//   filled from the setup engine's registers, so the setup engine accepts the
+//   next triangle in the cycle the back end takes this one or, when it has
+//   bands, in its last band's last fill cycle; at depth 0 only after the
+//   previous record (setup, fill and walk in turn).
+// - setup_fifo_depth 2: the fill stage takes it (with a copy of everything)
+//   when free, the setup engine accepts the next triangle in that cycle, and
+//   the back end takes it from the fill stage one cycle later at the earliest.
+//   The fill stage is free once the back end has its triangle and its last
+//   band is filled.
+// - Each band is filled into the next of table_banks banks once the band
+//   before in that bank has been walked, and walked from the cycle after its
+//   last fill cycle.
 class UnitSchedule {
  public:
   explicit UnitSchedule(const Widths& widths);
@@ -142,9 +151,13 @@ class UnitSchedule {
  private:
   int64_t setup_cycles_;
   int64_t fifo_depth_;
+  int64_t banks_;
   bool offer_after_record_ = false;
-  int64_t front_free_ = 0;  // first cycle the front end may accept a triangle
+  int64_t front_free_ = 0;  // first cycle the setup engine may accept a triangle
+  int64_t slot_free_ = 0;   // first cycle the fill stage may take one (depth 2)
   int64_t back_free_ = 0;   // first cycle the back end may take a triangle
+  int64_t bands_ = 0;       // bands filled so far: band k goes to bank k % banks
+  std::array<int64_t, 2> band_done_{-1, -1};  // per bank: the last walk cycle of its last band
   bool started_ = false;    // a triangle has been placed, so last_.record holds
   ScheduledTriangle last_;
 };

@@ -7,15 +7,19 @@
 // design is chosen per triangle by kind_i (when more than one is present),
 // density_log2_i and correction_i.
 //
-// Front and back (docs/rtl.md, "Front and back"): the front accepts a
-// triangle, runs the setup engine (SetupCycles) and, for the constant-depth
-// designs, fills the table band by band; the back walks the columns and runs
-// the datapath, then offers the record. The back takes a set-up triangle when
-// it is idle or in its record cycle. With CD_SETUP_FIFO_DEPTH = 1 the back
-// walks from its own copy of the setup results (the context), so the front
-// accepts the next triangle in the cycle the last one leaves it and sets it up
-// during the walk; the table has one bank, so a fill waits for the back. With
-// 0 they take turns: setup, fill and walk one after another.
+// Front, fill and back (docs/rtl.md, "Front and back"): the front accepts a
+// triangle and runs the setup engine (SetupCycles); the fill fills the table
+// band by band for the constant-depth designs; the back walks the columns and
+// runs the datapath, then offers the record. The back takes a set-up triangle
+// when it is idle or in its record cycle. CD_SETUP_FIFO_DEPTH chooses how far
+// they overlap: with 2 a fill stage between front and back holds a triangle
+// and a copy of everything it needs (contexts, the fill's operands), so the
+// front sets up triangle N+2 while N+1 is filled and N walked; with 1 the back
+// walks from its own copy of the setup results (the context) and the front
+// sets up the next triangle during the walk, but the fill reads the setup
+// engine's registers; with 0 they take turns: setup, fill and walk one after
+// another. CD_TABLE_BANKS = 2 doubles the table so that a band is filled
+// while the walker reads the band before; with 1 a fill waits for the walk.
 //
 // Cycles (docs/microarchitecture.md, model/timing.cpp): a walk takes one cycle
 // per column of every band and one per pixel (COLUMN, PIXEL); a fill lines +
@@ -164,19 +168,29 @@ module cd_scan_unit #(
     $error("cd_scan_unit needs at least one datapath (HasTable, HasDivide, HasAffine, HasAffineSub, HasKimIter, HasKimPipe)");
   end
 
-  // Front: accepts a triangle, runs the setup engine and fills the table;
-  // back: walks the columns and runs the datapath (docs/microarchitecture.md,
-  // "Front and back"). With FifoDepth = 1 the back walks from its own copy of
-  // the setup results (the context), so the front sets up the next triangle
-  // meanwhile; with 0 they share the setup engine's registers and take turns.
-  localparam logic [2:0] FrIdle     = 3'd0;
-  localparam logic [2:0] FrSetup    = 3'd1;
-  localparam logic [2:0] FrOffer    = 3'd2;  // set up, waiting for the back to take it
-  localparam logic [2:0] FrFill     = 3'd3;
-  localparam logic [2:0] FrBandWait = 3'd4;  // the back walks a band; another follows
+  localparam int TableBanks   = `CD_TABLE_BANKS;
+  localparam bit FillStage    = FifoDepth > 1;
 
-  logic [2:0]  front_d, front_q;
-  logic [StepCountBits-1:0] fcount_d, fcount_q;  // setup / fill cycle
+  // Front: accepts a triangle and runs the setup engine. Fill: fills the table
+  // band by band, into the next of TableBanks banks once the walker is done
+  // with the band it held. Back: walks the columns and runs the datapath
+  // (docs/microarchitecture.md, "Front and back"). FifoDepth = 2 puts a fill
+  // stage between front and back that holds a triangle with a copy of
+  // everything (contexts, the fill's operands), so the front sets up the
+  // next triangle while this one is filled and the one before walked. With 1
+  // the back holds its own copy, so the front sets up the next triangle during
+  // the walk, but the fill reads the setup engine's registers; with 0 they
+  // take turns.
+  localparam logic [1:0] FrIdle     = 2'd0;
+  localparam logic [1:0] FrSetup    = 2'd1;
+  localparam logic [1:0] FrOffer    = 2'd2;  // set up, waiting to move on
+  localparam logic [1:0] FrFillHeld = 2'd3;  // FifoDepth < 2: the fill reads the setup engine's registers
+  localparam logic [1:0] FlIdle     = 2'd0;
+  localparam logic [1:0] FlFill     = 2'd1;
+  localparam logic [1:0] FlBandWait = 2'd2;  // the next band's bank is still walked
+
+  logic [1:0]  front_d, front_q;
+  logic [StepCountBits-1:0] fcount_d, fcount_q;  // setup cycle
   logic [1:0]  f_kind_d, f_kind_q;
   logic [2:0]  f_segment_log2_d, f_segment_log2_q;
   logic        f_kim_pipelined_d, f_kim_pipelined_q;
@@ -184,8 +198,37 @@ module cd_scan_unit #(
   logic        f_correction_d, f_correction_q;
   logic        f_per_pixel;                      // the front's triangle: a per-pixel design
   logic        f_mode_affine;                    // the front's triangle: affine (its own setup)
-  logic signed [LineBits-1:0] f_band_lo_d, f_band_lo_q, f_band_hi_d, f_band_hi_q;
-  logic signed [BandBits-1:0] f_band_lines_d, f_band_lines_q;  // the band being filled, guards included
+
+  logic [1:0]  fill_d, fill_q;
+  logic [StepCountBits-1:0] fl_count_d, fl_count_q;  // fill cycle of the band
+  logic signed [LineBits-1:0] fl_band_lo_d, fl_band_lo_q, fl_band_hi_d, fl_band_hi_q;
+  logic signed [LineBits-1:0] fl_line_hi_d, fl_line_hi_q;      // the triangle's last pixel line
+  logic signed [BandBits-1:0] fl_band_lines_d, fl_band_lines_q;  // the band being filled, guards included
+  logic signed [BandBits-1:0] fl_per_band_d, fl_per_band_q;      // pixel lines per band
+  logic        fl_guard_d, fl_guard_q;
+  logic        fill_start;   // the fill takes a triangle with bands (from the setup engine's registers)
+  logic        fill_done;    // the fill's last cycle of its triangle's last band
+  logic        more_fill;    // the fill's triangle has a band after this one
+
+  // Banks: the one filled next, the one walked next, and which hold a band
+  // filled and not yet walked (with its lines, for the walker).
+  localparam int DescBits = 2 * LineBits + BandBits;
+  logic        fill_bank_d, fill_bank_q, walk_bank_d, walk_bank_q, next_fill_bank;
+  logic [1:0]  full_d, full_q, bank_free;
+  logic [DescBits-1:0] walk_desc, held_desc;
+  logic        band_avail;   // the band the walker waits for is in the table (or its fill ends now)
+  logic        table_band_done;
+
+  // The fill stage (FifoDepth = 2): the triangle there (p_*), handed on to
+  // the back.
+  logic        to_stage;     // the fill stage takes the front's triangle at the end of this cycle
+  logic        p_valid;      // a triangle waits for the back (in the fill stage, or the front's)
+  logic        stage_busy;
+  logic [1:0]  p_kind;
+  logic [2:0]  p_segment_log2;
+  logic        p_kim_pipelined, p_correction, p_empty, p_bands, p_per_pixel;
+  logic [1:0]  p_density_log2;
+  logic [7:0]  p_flags;
 
   logic [2:0]  state_d, state_q;                 // the back's
   logic [StepCountBits-1:0] count_d, count_q;    // scan / drain cycle
@@ -215,8 +258,8 @@ module cd_scan_unit #(
   logic [WeightBits-1:0] weight_d, weight_q;
   logic [CountBits-1:0] cycles_d, cycles_q, lines_d, lines_q, bands_d, bands_q, pixels_d, pixels_q;
   logic [7:0]  flags_d, flags_q;
-  logic        take;        // the back takes the front's triangle at the end of this cycle
-  logic        band_ready;  // the front's last fill cycle of a band: the back walks it next
+  logic        take;        // the back takes a triangle at the end of this cycle
+  logic        band_ready;  // the last fill cycle of a band
 
   // ---------------------------------------------------------------- blocks
   // The setup engine's results (s_*), and the context the back walks from
@@ -245,48 +288,46 @@ module cd_scan_unit #(
   logic signed [`CD_PLANE_STEP_UV_BITS-1:0] s_u_per_major, s_v_per_major, s_u_per_minor, s_v_per_minor;
   logic signed [`CD_PLANE_STEP_UV_BITS-1:0] u_per_major, v_per_major, u_per_minor, v_per_minor;
 
-  if (FifoDepth > 0) begin : gen_walk_context
-    localparam int Bits = 1 + 3 * PixelBits + (PixelBits + 1) + 6 + 3 * BoundBits + 9 * StepBits + 3 * SlopeBits;
-    logic [Bits-1:0] context_q;
-    always_ff @(posedge clk_i) begin
-      if (take) context_q <= {s_x_major, s_major_lo, s_minor_lo, s_minor_hi, s_major_count, s_edge_kind,
-                              s_edge_bound, s_edge_rem, s_edge_step, s_edge_slope_rem, s_edge_slope};
-    end
-    assign {setup_x_major, major_lo, minor_lo, minor_hi, major_count, edge_kind, edge_bound, edge_rem,
-            edge_step, edge_slope_rem, edge_slope} = context_q;
-  end else begin : gen_walk_shared
-    assign {setup_x_major, major_lo, minor_lo, minor_hi, major_count, edge_kind, edge_bound, edge_rem,
-            edge_step, edge_slope_rem, edge_slope} =
-           {s_x_major, s_major_lo, s_minor_lo, s_minor_hi, s_major_count, s_edge_kind, s_edge_bound,
-            s_edge_rem, s_edge_step, s_edge_slope_rem, s_edge_slope};
-  end
+  // The contexts: what the walker and datapath read of a triangle, in two
+  // stages after the setup engine's registers. The fill stage's copy (p_*,
+  // FifoDepth = 2) is loaded as the triangle enters it, the back's as the back
+  // takes it (FifoDepth >= 1); a stage that is not there is a wire.
+  localparam int WalkBits = 1 + 3 * PixelBits + (PixelBits + 1) + 6 + 3 * BoundBits + 9 * StepBits +
+                            3 * SlopeBits;
+  logic [WalkBits-1:0] s_walk, p_walk;
+  assign s_walk = {s_x_major, s_major_lo, s_minor_lo, s_minor_hi, s_major_count, s_edge_kind, s_edge_bound,
+                   s_edge_rem, s_edge_step, s_edge_slope_rem, s_edge_slope};
+  context_register #(.Bits(WalkBits), .Present(FifoDepth > 1))
+    u_walk_stage (.clk_i, .load_i(to_stage), .d_i(s_walk), .q_o(p_walk));
+  context_register #(.Bits(WalkBits), .Present(FifoDepth > 0))
+    u_walk_context (.clk_i, .load_i(take), .d_i(p_walk),
+                    .q_o({setup_x_major, major_lo, minor_lo, minor_hi, major_count, edge_kind, edge_bound,
+                          edge_rem, edge_step, edge_slope_rem, edge_slope}));
 
-  if (FifoDepth > 0 && HasTable) begin : gen_line_context
-    logic signed [GBits-1:0]    g_q;
-    logic signed [LineBits-1:0] line_hi_q;
-    always_ff @(posedge clk_i) begin
-      if (take) begin
-        g_q <= s_g;
-        line_hi_q <= s_pixel_line_hi;
-      end
-    end
-    assign setup_g = g_q;
-    assign pixel_line_hi = line_hi_q;
+  if (HasTable) begin : gen_line_context
+    logic [GBits+LineBits-1:0] p_line;
+    context_register #(.Bits(GBits + LineBits), .Present(FifoDepth > 1))
+      u_line_stage (.clk_i, .load_i(to_stage), .d_i({s_g, s_pixel_line_hi}), .q_o(p_line));
+    context_register #(.Bits(GBits + LineBits), .Present(FifoDepth > 0))
+      u_line_context (.clk_i, .load_i(take), .d_i(p_line), .q_o({setup_g, pixel_line_hi}));
   end else begin : gen_line_shared
     assign setup_g = s_g;
     assign pixel_line_hi = s_pixel_line_hi;
   end
 
-  if (FifoDepth > 0 && (HasDivide || HasAffineSub || HasKim)) begin : gen_plane_context
+  if (HasDivide || HasAffineSub || HasKim) begin : gen_plane_context
     localparam int Bits = `CD_PLANE_REF_Q_BITS + 2 * `CD_PLANE_REF_UV_BITS + 2 * `CD_PLANE_STEP_Q_BITS +
                           4 * `CD_PLANE_STEP_UV_BITS;
-    logic [Bits-1:0] context_q;
-    always_ff @(posedge clk_i) begin
-      if (take) context_q <= {s_q_at_ref, s_u_at_ref, s_v_at_ref, s_q_per_major, s_q_per_minor,
-                              s_u_per_major, s_v_per_major, s_u_per_minor, s_v_per_minor};
-    end
-    assign {q_at_ref, u_at_ref, v_at_ref, q_per_major, q_per_minor, u_per_major, v_per_major, u_per_minor,
-            v_per_minor} = context_q;
+    logic [Bits-1:0] p_planes;
+    context_register #(.Bits(Bits), .Present(FifoDepth > 1))
+      u_plane_stage (.clk_i, .load_i(to_stage),
+                     .d_i({s_q_at_ref, s_u_at_ref, s_v_at_ref, s_q_per_major, s_q_per_minor, s_u_per_major,
+                           s_v_per_major, s_u_per_minor, s_v_per_minor}),
+                     .q_o(p_planes));
+    context_register #(.Bits(Bits), .Present(FifoDepth > 0))
+      u_plane_context (.clk_i, .load_i(take), .d_i(p_planes),
+                       .q_o({q_at_ref, u_at_ref, v_at_ref, q_per_major, q_per_minor, u_per_major, v_per_major,
+                             u_per_minor, v_per_minor}));
   end else begin : gen_plane_shared
     assign {q_at_ref, u_at_ref, v_at_ref, q_per_major, q_per_minor, u_per_major, v_per_major, u_per_minor,
             v_per_minor} = {s_q_at_ref, s_u_at_ref, s_v_at_ref, s_q_per_major, s_q_per_minor, s_u_per_major,
@@ -295,7 +336,8 @@ module cd_scan_unit #(
 
   setup_engine #(
     .HasLines(HasTable), .HasPixelPlanes(HasDivide || HasAffineSub || HasKim),
-    .HasPlanes(HasTable || HasDivide || HasAffineSub || HasKim), .SramDepth(SramDepth)
+    .HasPlanes(HasTable || HasDivide || HasAffineSub || HasKim), .SramDepth(SramDepth),
+    .FillContext(FifoDepth > 1)
   ) u_setup_engine (
     .clk_i,
     .rst_ni,
@@ -347,6 +389,7 @@ module cd_scan_unit #(
     .edge_step_o       (s_edge_step),
     .edge_slope_o      (s_edge_slope),
     .edge_slope_rem_o  (s_edge_slope_rem),
+    .fill_load_i       (fill_start),
     .fill_valid_i      (fill_valid),
     .fill_last_i       (fill_last),
     .fill_addr_i       (fill_addr),
@@ -401,22 +444,39 @@ module cd_scan_unit #(
   logic [7:0]          table_flags;
 
   if (HasTable) begin : gen_table
+    // One scanline_table per bank: the fill writes one while the walker reads
+    // the other. Read data comes the cycle after the address, from the bank
+    // read then.
     logic [WordBits-1:0] own_entry, neighbour_entry;
+    logic [TableBanks*WordBits-1:0] own_bank, neighbour_bank;
 
-    scanline_table #(
-      .Depth(SramDepth), .WordBits(WordBits)
-    ) u_scanline_table (
-      .clk_i,
-      .write_i           (write_valid),
-      .write_addr_i      (write_addr),
-      .write_entry_i     (write_entry),
-      .read_i            (read),
-      .own_addr_i        (own_addr),
-      .neighbour_read_i  (neighbour_read),
-      .neighbour_addr_i  (neighbour_addr),
-      .own_entry_o       (own_entry),
-      .neighbour_entry_o (neighbour_entry)
-    );
+    for (genvar b = 0; b < TableBanks; b++) begin : gen_bank
+      scanline_table #(
+        .Depth(SramDepth), .WordBits(WordBits)
+      ) u_scanline_table (
+        .clk_i,
+        .write_i           (write_valid && fill_bank_q == 1'(b)),
+        .write_addr_i      (write_addr),
+        .write_entry_i     (write_entry),
+        .read_i            (read && walk_bank_q == 1'(b)),
+        .own_addr_i        (own_addr),
+        .neighbour_read_i  (neighbour_read),
+        .neighbour_addr_i  (neighbour_addr),
+        .own_entry_o       (own_bank[b*WordBits +: WordBits]),
+        .neighbour_entry_o (neighbour_bank[b*WordBits +: WordBits])
+      );
+    end
+    if (TableBanks > 1) begin : gen_read_bank
+      logic read_bank_q;
+      always_ff @(posedge clk_i) begin
+        if (read) read_bank_q <= walk_bank_q;
+      end
+      assign own_entry = read_bank_q ? own_bank[WordBits +: WordBits] : own_bank[0 +: WordBits];
+      assign neighbour_entry = read_bank_q ? neighbour_bank[WordBits +: WordBits] : neighbour_bank[0 +: WordBits];
+    end else begin : gen_one_bank
+      assign own_entry = own_bank;
+      assign neighbour_entry = neighbour_bank;
+    end
 
     correction_adder #(
       .HasCorrection(HasCorrection)
@@ -555,28 +615,16 @@ module cd_scan_unit #(
       .saturated_o  (s_saturated)
     );
 
-    // The back's copy of the planes (FifoDepth = 1), as for the others.
-    if (FifoDepth > 0) begin : gen_affine_context
-      logic signed [RefBits-1:0]    u_ref_q, v_ref_q;
-      logic signed [`CD_S_BITS-1:0] u_major_q, u_minor_q, v_major_q, v_minor_q;
-      logic                         saturated_q;
-      always_ff @(posedge clk_i) begin
-        if (take) begin
-          u_ref_q <= s_u_ref;
-          v_ref_q <= s_v_ref;
-          u_major_q <= s_u_major;
-          u_minor_q <= s_u_minor;
-          v_major_q <= s_v_major;
-          v_minor_q <= s_v_minor;
-          saturated_q <= s_saturated;
-        end
-      end
-      assign {u_ref, v_ref, u_major, u_minor, v_major, v_minor, setup_saturated} =
-             {u_ref_q, v_ref_q, u_major_q, u_minor_q, v_major_q, v_minor_q, saturated_q};
-    end else begin : gen_affine_shared
-      assign {u_ref, v_ref, u_major, u_minor, v_major, v_minor, setup_saturated} =
-             {s_u_ref, s_v_ref, s_u_major, s_u_minor, s_v_major, s_v_minor, s_saturated};
-    end
+    // The planes' stages, as for the others.
+    localparam int Bits = 2 * RefBits + 4 * `CD_S_BITS + 1;
+    logic [Bits-1:0] p_affine;
+    context_register #(.Bits(Bits), .Present(FifoDepth > 1))
+      u_affine_stage (.clk_i, .load_i(to_stage),
+                      .d_i({s_u_ref, s_v_ref, s_u_major, s_u_minor, s_v_major, s_v_minor, s_saturated}),
+                      .q_o(p_affine));
+    context_register #(.Bits(Bits), .Present(FifoDepth > 0))
+      u_affine_context (.clk_i, .load_i(take), .d_i(p_affine),
+                        .q_o({u_ref, v_ref, u_major, u_minor, v_major, v_minor, setup_saturated}));
 
     plane_accumulator #(
       .RefBits(RefBits), .StepBits(`CD_S_BITS), .AccBits(AccBits)
@@ -766,13 +814,13 @@ module cd_scan_unit #(
   end
 
   // ---------------------------------------------------------------- control
-  logic signed [BandBits-1:0] guard, depth, pixel_lines, lines_per_band;  // the front's triangle
-  logic signed [BandBits-1:0] next_band_lo, next_band_hi;
+  logic signed [BandBits-1:0] guard, depth, pixel_lines, lines_per_band, first_band_hi;  // the front's triangle
+  logic signed [BandBits-1:0] next_band_lo, next_band_hi;                                 // the fill's
   logic signed [BandBits-1:0] read_line, read_addr;
   logic [PixelBits-1:0] read_minor;
   logic               read_minor_valid;
-  logic               band_done, last_column, more_bands;
-  logic               job_valid, job_bands, back_free, accept, front_leaves, unit_busy;
+  logic               band_done, last_column;
+  logic               job_valid, s_job_bands, back_free, accept, front_leaves, unit_busy;
 
   // The designs by kind and segment: {divide, affine, affine-subN, Kim}, none
   // for the table. With one datapath the mode is a constant, and synthesis
@@ -787,7 +835,22 @@ module cd_scan_unit #(
   assign f_modes = modes_of(f_kind_q, f_segment_log2_q);
   assign f_mode_affine = f_modes[2];
   assign f_per_pixel = |f_modes;
-  // The back's triangle: its own copy with FifoDepth = 1, else the front's.
+  // A constant-depth triangle with pixel lines: its table is filled band by band.
+  assign s_job_bands = !setup_empty && !f_per_pixel && !setup_no_lines;
+
+  // What the back needs to know of a triangle as it takes it: through the fill
+  // stage with FifoDepth = 2, else straight from the front.
+  localparam int JobBits = 2 + 3 + 1 + 2 + 1 + 3 + 8;
+  logic [JobBits-1:0] p_job;
+  context_register #(.Bits(JobBits), .Present(FillStage)) u_job_stage (
+    .clk_i, .load_i(to_stage),
+    .d_i({f_kind_q, f_segment_log2_q, f_kim_pipelined_q, f_density_log2_q, f_correction_q, setup_empty,
+          s_job_bands, f_per_pixel, setup_empty ? 8'd0 : setup_flags}),
+    .q_o(p_job));
+  assign {p_kind, p_segment_log2, p_kim_pipelined, p_density_log2, p_correction, p_empty, p_bands, p_per_pixel,
+          p_flags} = p_job;
+
+  // The back's triangle: its own copy with FifoDepth >= 1, else the front's.
   assign kind_q = FifoDepth > 0 ? b_kind_q : f_kind_q;
   assign segment_log2_q = FifoDepth > 0 ? b_segment_log2_q : f_segment_log2_q;
   assign kim_pipelined_q = FifoDepth > 0 ? b_kim_pipelined_q : f_kim_pipelined_q;
@@ -802,22 +865,90 @@ module cd_scan_unit #(
   // cycles held (docs/rtl.md).
   assign hold = frag_valid_o && !frag_ready_i;
 
-  // The front offers its set-up triangle from the last setup cycle on; the back
-  // takes it when idle or as it delivers its record. A constant-depth triangle
-  // with lines is then filled band by band, each band walked after its fill.
+  // Hand-offs. The front offers its set-up triangle from the last setup cycle
+  // on. With FifoDepth = 2 the fill stage takes it when free, and the back
+  // takes it from there; else the back takes it from the front. The back
+  // takes a triangle when idle or as it delivers its record. A triangle with
+  // bands is filled from the cycle after the fill takes it.
   assign job_valid = (front_q == FrSetup && fcount_q == StepCountBits'(SetupCycles - 1)) || front_q == FrOffer;
-  assign job_bands = !setup_empty && !f_per_pixel && !setup_no_lines;
   assign back_free = state_q == StIdle || (state_q == StRecord && rec_ready_i);
-  assign take = job_valid && back_free && !hold;
-  assign band_ready = front_q == FrFill &&
-                      BandBits'($signed({1'b0, fcount_q})) == f_band_lines_q + BandBits'(RecipLatency - 1);
-  assign more_bands = f_band_hi_q < s_pixel_line_hi;
-  // The front is free the cycle its triangle leaves it, and with FifoDepth = 1
-  // accepts the next one in that cycle; with 0 only once the back is idle too.
-  assign front_leaves = (take && !job_bands) || (band_ready && !more_bands);
+  assign take = p_valid && back_free && !hold;
+  assign band_ready = fill_q == FlFill &&
+                      BandBits'($signed({1'b0, fl_count_q})) == fl_band_lines_q + BandBits'(RecipLatency - 1);
+  assign more_fill = fl_band_hi_q < fl_line_hi_q;
+  assign fill_done = band_ready && !more_fill;
+
+  if (FillStage) begin : gen_fill_stage
+    // Free once the back has taken its triangle and the last band is filled.
+    logic stage_q, stage_taken_q, stage_free;
+    assign stage_free = !stage_q || ((stage_taken_q || take) && (fill_q == FlIdle || fill_done));
+    assign to_stage = job_valid && stage_free && !hold;
+    assign p_valid = stage_q && !stage_taken_q;
+    assign stage_busy = stage_q;
+    assign fill_start = to_stage && s_job_bands;
+    assign front_leaves = to_stage;
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        stage_q <= 1'b0;
+        stage_taken_q <= 1'b0;
+      end else if (!hold) begin
+        if (to_stage) begin
+          stage_q <= 1'b1;
+          stage_taken_q <= 1'b0;
+        end else if (stage_q && stage_free) begin
+          stage_q <= 1'b0;
+        end else if (take) begin
+          stage_taken_q <= 1'b1;
+        end
+      end
+    end
+  end else begin : gen_no_fill_stage
+    // The fill reads the setup engine's registers: the front is free when the
+    // back takes a triangle without bands, or at the last band's last fill cycle.
+    assign to_stage = 1'b0;
+    assign p_valid = job_valid;
+    assign stage_busy = 1'b0;
+    assign fill_start = take && s_job_bands;
+    assign front_leaves = (take && !s_job_bands) || fill_done;
+  end
+  // With FifoDepth >= 1 the front accepts the next triangle in the cycle the
+  // last one leaves it; with 0 only once the back is idle too.
   assign tri_ready_o = !hold && (FifoDepth > 0 ? front_q == FrIdle || front_leaves
                                                : front_q == FrIdle && state_q == StIdle);
   assign accept = tri_valid_i && tri_ready_o;
+
+  // Banks. A bank may be filled from the next cycle when it holds no band
+  // waiting or walked (the band whose fill ends now counts), or when the walk
+  // of its band ends now. Bands go to the banks in turn, and are walked in
+  // the same turn.
+  assign table_band_done = band_done && !per_pixel;
+  for (genvar b = 0; b < 2; b++) begin : gen_bank_state
+    assign bank_free[b] = !(full_q[b] || (band_ready && fill_bank_q == 1'(b))) ||
+                          (table_band_done && walk_bank_q == 1'(b));
+    assign full_d[b] = (full_q[b] || (band_ready && fill_bank_q == 1'(b))) &&
+                       !(table_band_done && walk_bank_q == 1'(b));
+  end
+  assign next_fill_bank = TableBanks > 1 ? fill_bank_q ^ band_ready : 1'b0;
+  assign fill_bank_d = next_fill_bank;
+  assign walk_bank_d = TableBanks > 1 ? walk_bank_q ^ table_band_done : 1'b0;
+  assign band_avail = full_q[walk_bank_q] || (band_ready && fill_bank_q == walk_bank_q);
+  assign walk_desc = full_q[walk_bank_q] ? held_desc : {fl_band_lo_q, fl_band_hi_q, fl_band_lines_q};
+  if (TableBanks > 1) begin : gen_two_descs
+    logic [DescBits-1:0] desc0_q, desc1_q;
+    always_ff @(posedge clk_i) begin
+      if (band_ready && !hold) begin
+        if (fill_bank_q) desc1_q <= {fl_band_lo_q, fl_band_hi_q, fl_band_lines_q};
+        else desc0_q <= {fl_band_lo_q, fl_band_hi_q, fl_band_lines_q};
+      end
+    end
+    assign held_desc = walk_bank_q ? desc1_q : desc0_q;
+  end else begin : gen_one_desc
+    logic [DescBits-1:0] desc_q;
+    always_ff @(posedge clk_i) begin
+      if (band_ready && !hold) desc_q <= {fl_band_lo_q, fl_band_hi_q, fl_band_lines_q};
+    end
+    assign held_desc = desc_q;
+  end
 
   // ---- front
   always_comb begin
@@ -828,20 +959,6 @@ module cd_scan_unit #(
     f_kim_pipelined_d = f_kim_pipelined_q;
     f_density_log2_d = f_density_log2_q;
     f_correction_d = f_correction_q;
-    f_band_lo_d = f_band_lo_q;
-    f_band_hi_d = f_band_hi_q;
-    f_band_lines_d = f_band_lines_q;
-    fill_valid = 1'b0;
-    fill_last = 1'b0;
-    fill_addr = '0;
-
-    guard = BandBits'($signed({1'b0, f_correction_q}));
-    pixel_lines = BandBits'(s_pixel_line_hi) - BandBits'(s_pixel_line_lo) + BandBits'(1);
-    depth = BandBits'(TableDepth) <<< f_density_log2_q;
-    lines_per_band = pixel_lines + 2 * guard <= depth ? pixel_lines : depth - 2 * guard;
-    next_band_lo = BandBits'(f_band_hi_q) + BandBits'(1);
-    next_band_hi = next_band_lo + lines_per_band - BandBits'(1);
-    if (next_band_hi > BandBits'(s_pixel_line_hi)) next_band_hi = BandBits'(s_pixel_line_hi);
 
     unique case (front_q)
       FrIdle, FrOffer: ;
@@ -852,38 +969,11 @@ module cd_scan_unit #(
           front_d = FrOffer;
         end
       end
-      FrFill: begin
-        fcount_d = fcount_q + StepCountBits'(1);
-        if (BandBits'($signed({1'b0, fcount_q})) < f_band_lines_q) begin
-          fill_valid = !hold;
-          fill_last = BandBits'($signed({1'b0, fcount_q})) == f_band_lines_q - BandBits'(1);
-          fill_addr = AddrBits'(fcount_q);
-        end
-        if (band_ready) begin
-          fcount_d = '0;
-          front_d = more_bands ? FrBandWait : FrIdle;
-        end
-      end
-      FrBandWait: if (band_done) begin
-        front_d = FrFill;
-        f_band_lo_d = LineBits'(next_band_lo);
-        f_band_hi_d = LineBits'(next_band_hi);
-        f_band_lines_d = next_band_hi - next_band_lo + BandBits'(1) + 2 * guard;
-      end
+      FrFillHeld: if (fill_done) front_d = FrIdle;
       default: front_d = FrIdle;
     endcase
 
-    if (take) begin
-      front_d = FrIdle;
-      if (job_bands) begin
-        front_d = FrFill;
-        fcount_d = '0;
-        f_band_lo_d = s_pixel_line_lo;
-        f_band_hi_d = LineBits'(BandBits'(s_pixel_line_lo) + lines_per_band - BandBits'(1));
-        if (f_band_hi_d > s_pixel_line_hi) f_band_hi_d = s_pixel_line_hi;
-        f_band_lines_d = BandBits'(f_band_hi_d) - BandBits'(f_band_lo_d) + BandBits'(1) + 2 * guard;
-      end
-    end
+    if (FillStage ? to_stage : take) front_d = !FillStage && s_job_bands ? FrFillHeld : FrIdle;
     if (accept) begin
       front_d = FrSetup;
       fcount_d = '0;
@@ -892,6 +982,68 @@ module cd_scan_unit #(
       f_kim_pipelined_d = kim_pipelined_i;
       f_density_log2_d = density_log2_i;
       f_correction_d = correction_i && HasCorrection;
+    end
+  end
+
+  // ---- fill
+  always_comb begin
+    fill_d = fill_q;
+    fl_count_d = fl_count_q;
+    fl_band_lo_d = fl_band_lo_q;
+    fl_band_hi_d = fl_band_hi_q;
+    fl_band_lines_d = fl_band_lines_q;
+    fl_line_hi_d = fl_line_hi_q;
+    fl_per_band_d = fl_per_band_q;
+    fl_guard_d = fl_guard_q;
+    fill_valid = 1'b0;
+    fill_last = 1'b0;
+    fill_addr = '0;
+
+    // The front's triangle: its lines per band, and its first band.
+    guard = BandBits'($signed({1'b0, f_correction_q}));
+    pixel_lines = BandBits'(s_pixel_line_hi) - BandBits'(s_pixel_line_lo) + BandBits'(1);
+    depth = BandBits'(TableDepth) <<< f_density_log2_q;
+    lines_per_band = pixel_lines + 2 * guard <= depth ? pixel_lines : depth - 2 * guard;
+    first_band_hi = BandBits'(s_pixel_line_lo) + lines_per_band - BandBits'(1);
+    if (first_band_hi > BandBits'(s_pixel_line_hi)) first_band_hi = BandBits'(s_pixel_line_hi);
+    // The fill's triangle: its next band.
+    next_band_lo = BandBits'(fl_band_hi_q) + BandBits'(1);
+    next_band_hi = next_band_lo + fl_per_band_q - BandBits'(1);
+    if (next_band_hi > BandBits'(fl_line_hi_q)) next_band_hi = BandBits'(fl_line_hi_q);
+
+    unique case (fill_q)
+      FlIdle: ;
+      FlFill: begin
+        fl_count_d = fl_count_q + StepCountBits'(1);
+        if (BandBits'($signed({1'b0, fl_count_q})) < fl_band_lines_q) begin
+          fill_valid = !hold;
+          fill_last = BandBits'($signed({1'b0, fl_count_q})) == fl_band_lines_q - BandBits'(1);
+          fill_addr = AddrBits'(fl_count_q);
+        end
+        if (band_ready) begin
+          fl_count_d = '0;
+          fill_d = FlIdle;
+          if (more_fill) begin
+            fl_band_lo_d = LineBits'(next_band_lo);
+            fl_band_hi_d = LineBits'(next_band_hi);
+            fl_band_lines_d = next_band_hi - next_band_lo + BandBits'(1) + 2 * BandBits'($signed({1'b0, fl_guard_q}));
+            fill_d = bank_free[next_fill_bank] ? FlFill : FlBandWait;
+          end
+        end
+      end
+      FlBandWait: if (bank_free[fill_bank_q]) fill_d = FlFill;
+      default: fill_d = FlIdle;
+    endcase
+
+    if (fill_start) begin
+      fl_count_d = '0;
+      fl_band_lo_d = s_pixel_line_lo;
+      fl_band_hi_d = LineBits'(first_band_hi);
+      fl_band_lines_d = first_band_hi - BandBits'(s_pixel_line_lo) + BandBits'(1) + 2 * guard;
+      fl_line_hi_d = s_pixel_line_hi;
+      fl_per_band_d = lines_per_band;
+      fl_guard_d = f_correction_q;
+      fill_d = bank_free[next_fill_bank] ? FlFill : FlBandWait;
     end
   end
 
@@ -937,16 +1089,14 @@ module cd_scan_unit #(
 
     unique case (state_q)
       StIdle: ;
-      StFillWait: if (band_ready) begin
-        // The front's last fill cycle of the band: its lines are in the table.
+      StFillWait: if (band_avail) begin
+        // The band's lines are in the table (or their fill ends this cycle).
         state_d = StColumn;
         offset_d = '0;
         column_init = 1'b1;
-        band_lo_d = f_band_lo_q;
-        band_hi_d = f_band_hi_q;
-        band_lines_d = f_band_lines_q;
+        {band_lo_d, band_hi_d, band_lines_d} = walk_desc;
         bands_d = bands_q + CountBits'(1);
-        lines_d = lines_q + CountBits'(f_band_lines_q);
+        lines_d = lines_q + CountBits'(band_lines_d);
       end
       StInit: begin
         // FifoDepth = 1: the walker loads from the context taken last cycle.
@@ -1070,25 +1220,25 @@ module cd_scan_unit #(
     // An affine-subN end point with q <= 0.
     if (mode_sub && sub_depth_out) flags_d[`CD_FLAG_DEPTH_RANGE] = 1'b1;
 
-    // The back takes the front's triangle (in its record cycle, after the
-    // record's own values were offered).
+    // The back takes a triangle (in its record cycle, after the record's own
+    // values were offered).
     if (take) begin
-      b_kind_d = f_kind_q;
-      b_segment_log2_d = f_segment_log2_q;
-      b_kim_pipelined_d = f_kim_pipelined_q;
-      b_density_log2_d = f_density_log2_q;
-      b_correction_d = f_correction_q;
+      b_kind_d = p_kind;
+      b_segment_log2_d = p_segment_log2;
+      b_kim_pipelined_d = p_kim_pipelined;
+      b_density_log2_d = p_density_log2;
+      b_correction_d = p_correction;
       lines_d = '0;
       bands_d = '0;
       pixels_d = '0;
-      flags_d = setup_empty ? '0 : setup_flags;
+      flags_d = p_flags;
       offset_d = '0;
       count_d = '0;
-      if (setup_empty) begin
+      if (p_empty) begin
         state_d = StRecord;
-      end else if (job_bands) begin
+      end else if (p_bands) begin
         state_d = StFillWait;
-      end else if (!f_per_pixel) begin
+      end else if (!p_per_pixel) begin
         state_d = StScan;  // columns walked with no possible line
       end else if (FifoDepth > 0) begin
         state_d = StInit;
@@ -1118,7 +1268,7 @@ module cd_scan_unit #(
   // The record's clocks: every cycle from the one after the last record was
   // delivered (from the accept, for the first triangle) to its own delivery,
   // held cycles included. Overlapping triangles are thus attributed in order.
-  assign unit_busy = front_q != FrIdle || state_q != StIdle || accept;
+  assign unit_busy = front_q != FrIdle || stage_busy || state_q != StIdle || accept;
   always_comb begin
     cycles_d = cycles_q;
     if (state_q == StRecord && rec_ready_i) cycles_d = '0;
@@ -1148,9 +1298,17 @@ module cd_scan_unit #(
       f_kim_pipelined_q <= 1'b0;
       f_density_log2_q <= '0;
       f_correction_q <= 1'b0;
-      f_band_lo_q <= '0;
-      f_band_hi_q <= '0;
-      f_band_lines_q <= '0;
+      fill_q <= FlIdle;
+      fl_count_q <= '0;
+      fl_band_lo_q <= '0;
+      fl_band_hi_q <= '0;
+      fl_band_lines_q <= '0;
+      fl_line_hi_q <= '0;
+      fl_per_band_q <= '0;
+      fl_guard_q <= 1'b0;
+      fill_bank_q <= 1'b0;
+      walk_bank_q <= 1'b0;
+      full_q <= '0;
       state_q <= StIdle;
       count_q <= '0;
       b_kind_q <= '0;
@@ -1182,9 +1340,17 @@ module cd_scan_unit #(
       f_kim_pipelined_q <= f_kim_pipelined_d;
       f_density_log2_q <= f_density_log2_d;
       f_correction_q <= f_correction_d;
-      f_band_lo_q <= f_band_lo_d;
-      f_band_hi_q <= f_band_hi_d;
-      f_band_lines_q <= f_band_lines_d;
+      fill_q <= fill_d;
+      fl_count_q <= fl_count_d;
+      fl_band_lo_q <= fl_band_lo_d;
+      fl_band_hi_q <= fl_band_hi_d;
+      fl_band_lines_q <= fl_band_lines_d;
+      fl_line_hi_q <= fl_line_hi_d;
+      fl_per_band_q <= fl_per_band_d;
+      fl_guard_q <= fl_guard_d;
+      fill_bank_q <= fill_bank_d;
+      walk_bank_q <= walk_bank_d;
+      full_q <= full_d;
       state_q <= state_d;
       count_q <= count_d;
       b_kind_q <= b_kind_d;

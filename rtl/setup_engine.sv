@@ -28,6 +28,12 @@ module setup_engine #(
   // but affine, which takes its own planes of u and v from affine_setup).
   parameter bit HasPlanes = 1'b1,
   parameter int SramDepth = `CD_TABLE_DEPTH,
+  // The fill keeps its own copy of what it needs (q, U, V on the first line,
+  // their steps per line, the S numerators and the guard), loaded by
+  // fill_load_i, so that the setup engine can take the next triangle while it
+  // fills (cd_scan_unit's fill stage, setup_fifo_depth 2). Without it the fill
+  // reads the setup engine's registers and starts at stage E.
+  parameter bit FillContext = 1'b0,
   localparam int AddrBits = $clog2(SramDepth)
 ) (
   input  logic                       clk_i,
@@ -92,6 +98,7 @@ module setup_engine #(
   output logic [3*`CD_EDGE_SLOPE_BITS-1:0] edge_slope_o,
   output logic [3*`CD_EDGE_STEP_BITS-1:0]  edge_slope_rem_o,
   // Fill: one line per cycle; fill_last_i marks the band's last line.
+  input  logic                       fill_load_i,
   input  logic                       fill_valid_i,
   input  logic                       fill_last_i,
   input  logic [AddrBits-1:0]        fill_addr_i,
@@ -976,25 +983,57 @@ module setup_engine #(
     logic signed [LineBits-1:0]      first_line;
     logic signed [FillQBits-1:0]     q_line_d, q_line_q;
     logic signed [FillUvBits-1:0]    u_line_d, u_line_q, v_line_d, v_line_q;
+    logic                            load;
+    // What the fill reads while it runs: the setup engine's registers, or its copy.
+    logic signed [PlaneStepQBits-1:0]  fill_q_per_line;
+    logic signed [PlaneStepUvBits-1:0] fill_u_per_line, fill_v_per_line;
+    logic signed [StepUvBits-1:0]      fill_step_u, fill_step_v;
+    logic                              fill_guard;
+
+    if (FillContext) begin : gen_fill_context
+      logic signed [PlaneStepQBits-1:0]  q_per_line_c;
+      logic signed [PlaneStepUvBits-1:0] u_per_line_c, v_per_line_c;
+      logic signed [StepUvBits-1:0]      step_u_c, step_v_c;
+      logic                              guard_c;
+      always_ff @(posedge clk_i) begin
+        if (fill_load_i) begin
+          q_per_line_c <= q_per_line_q;
+          u_per_line_c <= u_per_line_q;
+          v_per_line_c <= v_per_line_q;
+          step_u_c <= step_u_q;
+          step_v_c <= step_v_q;
+          guard_c <= guard_q;
+        end
+      end
+      assign {fill_q_per_line, fill_u_per_line, fill_v_per_line, fill_step_u, fill_step_v, fill_guard} =
+             {q_per_line_c, u_per_line_c, v_per_line_c, step_u_c, step_v_c, guard_c};
+      assign load = fill_load_i;
+    end else begin : gen_fill_shared
+      assign {fill_q_per_line, fill_u_per_line, fill_v_per_line, fill_step_u, fill_step_v, fill_guard} =
+             {q_per_line_q, u_per_line_q, v_per_line_q, step_u_q, step_v_q, guard_q};
+      assign load = stage_e;
+      logic unused_fill_load;
+      assign unused_fill_load = fill_load_i;
+    end
 
     always_comb begin
       first_line = line_lo_q - LineBits'($signed({1'b0, guard_q}));
       q_line_d = q_line_q;
       u_line_d = u_line_q;
       v_line_d = v_line_q;
-      if (stage_e) begin
+      if (load) begin
         q_line_d = FillQBits'(q_at_ref_q) + FillQBits'(first_line) * FillQBits'(q_per_line_q);
         u_line_d = FillUvBits'(u_at_ref_q) + FillUvBits'(first_line) * FillUvBits'(u_per_line_q);
         v_line_d = FillUvBits'(v_at_ref_q) + FillUvBits'(first_line) * FillUvBits'(v_per_line_q);
       end else if (fill_valid_i) begin
-        if (fill_last_i && guard_q) begin
-          q_line_d = q_line_q - FillQBits'(q_per_line_q);
-          u_line_d = u_line_q - FillUvBits'(u_per_line_q);
-          v_line_d = v_line_q - FillUvBits'(v_per_line_q);
+        if (fill_last_i && fill_guard) begin
+          q_line_d = q_line_q - FillQBits'(fill_q_per_line);
+          u_line_d = u_line_q - FillUvBits'(fill_u_per_line);
+          v_line_d = v_line_q - FillUvBits'(fill_v_per_line);
         end else begin
-          q_line_d = q_line_q + FillQBits'(q_per_line_q);
-          u_line_d = u_line_q + FillUvBits'(u_per_line_q);
-          v_line_d = v_line_q + FillUvBits'(v_per_line_q);
+          q_line_d = q_line_q + FillQBits'(fill_q_per_line);
+          u_line_d = u_line_q + FillUvBits'(fill_u_per_line);
+          v_line_d = v_line_q + FillUvBits'(fill_v_per_line);
         end
       end
     end
@@ -1068,8 +1107,8 @@ module setup_engine #(
         {result_addr, result_depth_out, result_exponent, result_u, result_v} = result_tag;
         product_tu = ProductTBits'(result_u) * ProductTBits'($signed({1'b0, recip}));
         product_tv = ProductTBits'(result_v) * ProductTBits'($signed({1'b0, recip}));
-        product_su = ProductSBits'(step_u_q) * ProductSBits'($signed({1'b0, recip}));
-        product_sv = ProductSBits'(step_v_q) * ProductSBits'($signed({1'b0, recip}));
+        product_su = ProductSBits'(fill_step_u) * ProductSBits'($signed({1'b0, recip}));
+        product_sv = ProductSBits'(fill_step_v) * ProductSBits'($signed({1'b0, recip}));
         shift_t = ProductShiftBits'($signed({1'b0, result_exponent})) + ProductShiftBits'(RecipBits + UvInFrac - TFrac);
         shift_s = ProductShiftBits'($signed({1'b0, result_exponent})) + ProductShiftBits'(RecipBits + UvInFrac - SFrac);
       end
@@ -1097,7 +1136,7 @@ module setup_engine #(
     assign write_addr_o = result_addr;
   end else begin : gen_no_fill
     logic unused_fill;
-    assign unused_fill = ^{hold_i, fill_valid_i, fill_last_i, fill_addr_i, q_at_ref_q, u_at_ref_q, v_at_ref_q,
+    assign unused_fill = ^{hold_i, fill_load_i, fill_valid_i, fill_last_i, fill_addr_i, q_at_ref_q, u_at_ref_q, v_at_ref_q,
                            q_per_line_q, u_per_line_q, v_per_line_q, step_u_q, step_v_q, line_lo_q,
                            guard_q};
     assign write_valid_o = 1'b0;

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 namespace cdsim::rtl {
 
 std::string describe_job(const Job& job) {
@@ -85,7 +87,11 @@ bool Scoreboard::setup(const RtlSetup& a) {
 
 bool Scoreboard::table_write(const RtlTableWrite& a) {
   if (pending_.empty()) return fail_unexpected(fmt::format("a table write at address {}", a.address));
-  Expected& x = pending_.front();
+  // The table is filled in triangle order: the write belongs to the oldest
+  // triangle whose writes are not all seen (or, past them all, the newest).
+  auto it = std::find_if(pending_.begin(), pending_.end(),
+                         [](const Expected& e) { return e.next_write < e.trace.writes.size(); });
+  Expected& x = it != pending_.end() ? *it : pending_.back();
   const std::vector<TableWrite>& writes = x.trace.writes;
   if (x.next_write >= writes.size())
     return fail(x, fmt::format("table write #{} at address {} (the model writes only {})", x.next_write,

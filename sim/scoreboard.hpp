@@ -53,12 +53,13 @@ struct RtlRecord {
   uint32_t flags = 0;
 };
 
-// Triangles overlap in the unit (setup_fifo_depth = 1): the next one is set up
-// while the last one's fragments leave. The scoreboard keeps the triangles
-// accepted and not yet recorded in order: fragments, table writes and the
-// record belong to the oldest (the back end's; the table is filled only for
-// the triangle the back end has taken), setup results to the oldest whose
-// setup has not been seen.
+// Triangles overlap in the unit (setup_fifo_depth >= 1): the next one is set
+// up while the last one's fragments leave, and with a fill stage and two table
+// banks (setup_fifo_depth 2, table_banks 2) filled while the last one is
+// walked. The scoreboard keeps the triangles accepted and not yet recorded in
+// order: fragments and the record belong to the oldest (the back end's),
+// table writes to the oldest whose writes are not all seen, setup results to
+// the oldest whose setup has not been seen.
 class Scoreboard {
  public:
   Scoreboard(const Widths& widths, uint64_t seed) : widths_(widths), seed_(seed), schedule_(widths) {}

@@ -45,10 +45,13 @@ def expect(cond, what):
     print(("ok   " if cond else "FAIL ") + what)
     if not cond: failures.append(what)
 expect(cov["runs"] == runs, f"{runs} runs merged")
+# c_front_fill_held needs setup_fifo_depth 1 (the wide widths): the long set only.
 uncovered = {u["point"] for u in cov["uncovered"] if u["type"] == "user"}
 for p in ["c_state_" + s for s in ("idle", "fill_wait", "init", "column", "pixel", "scan", "record", "drain")] + \
-         ["c_front_" + s for s in ("setup", "offer", "fill", "band_wait")] + \
-         ["c_setup_during_walk", "c_take_at_record", "c_hold_in_setup"] + \
+         ["c_front_setup", "c_front_offer", "c_fill_filling", "c_fill_band_wait"] + \
+         ["c_setup_during_walk", "c_fill_during_walk", "c_band_filled_ahead", "c_take_at_record",
+          "c_hold_in_setup"] + \
+         (["c_front_fill_held"] if scale > 1 else []) + \
          ["c_design_" + s for s in ("cd_none", "cd_linear", "cd_dense2", "cd_dense4", "cd_dense2_linear", "divide",
                                     "kim_iter", "kim_pipe", "affine_sub16", "affine_sub8", "affine")] + \
          ["c_fragment_stall", "c_flag_banded", "c_flag_table_saturated", "c_flag_output_saturated",

@@ -166,18 +166,31 @@ TEST(UnitBehaviour, CyclesOfAHandWorkedTriangle) {
       {"divide", kSetup + kColumnCycles + 28 + 4},
   };
   // The first triangle of a stream also holds the unit in its accept cycle and
-  // its record cycle, and at setup_fifo_depth 1 a per-pixel design spends a
-  // cycle loading the walker from the held setup results.
-  ASSERT_EQ(w.setup_fifo_depth, 1);
+  // its record cycle. At setup_fifo_depth 2 (the default) it moves into the
+  // fill stage in its last setup cycle and the back takes it a cycle later: a
+  // constant-depth triangle is filled meanwhile, a per-pixel design waits that
+  // cycle and one more to load the walker from its context.
+  ASSERT_EQ(w.setup_fifo_depth, 2);
   for (const auto& [name, cycles] : expected) {
     TriangleRecord r;
     const auto fragments = testing::run_unit(find_design(name), w, 64, 64, t, &r);
     EXPECT_EQ(fragments.size(), 28u) << name;
-    const int64_t load = find_design(name).kind == Design::Kind::ConstantDepth ? 0 : 1;
-    EXPECT_EQ(r.cycles, 1 + cycles + load + 1) << name;
+    const bool table = find_design(name).kind == Design::Kind::ConstantDepth;
+    EXPECT_EQ(r.cycles, 1 + cycles + (table ? 0 : 2) + 1) << name;
     EXPECT_EQ(r.setup_cycles + r.fill_cycles + r.walk_cycles + r.record_cycles, r.cycles) << name;
-    EXPECT_EQ(r.setup_cycles, 1 + kSetup) << name;
+    EXPECT_EQ(r.setup_cycles, 1 + kSetup + 1) << name;
     EXPECT_EQ(r.record_cycles, 1) << name;
+  }
+  // At depth 1 the back takes it from the setup engine: a per-pixel design
+  // only spends the load cycle.
+  Widths overlapped = w;
+  overlapped.setup_fifo_depth = 1;
+  for (const auto& [name, cycles] : expected) {
+    TriangleRecord r;
+    testing::run_unit(find_design(name), overlapped, 64, 64, t, &r);
+    const bool table = find_design(name).kind == Design::Kind::ConstantDepth;
+    EXPECT_EQ(r.cycles, 1 + cycles + (table ? 0 : 1) + 1) << name;
+    EXPECT_EQ(r.setup_cycles, 1 + kSetup) << name;
   }
   // Run one after another (setup_fifo_depth 0) there is no load cycle.
   Widths serial = w;
@@ -198,8 +211,9 @@ TEST(UnitBehaviour, ZeroAreaAndEmptyBoxCostOnlySetup) {
   for (const auto& s : {line, between_centres}) {
     TriangleRecord r;
     EXPECT_TRUE(testing::run_unit(find_design("cd-linear"), w, 32, 32, to_unit(s, w, 0), &r).empty());
-    // Accept, setup and record.
-    EXPECT_EQ(r.cycles, 1 + derive(w).setup_cycles + 1);
+    // Accept, setup, the cycle in the fill stage (setup_fifo_depth 2) and record.
+    ASSERT_EQ(w.setup_fifo_depth, 2);
+    EXPECT_EQ(r.cycles, 1 + derive(w).setup_cycles + 1 + 1);
     EXPECT_EQ(r.fill_cycles + r.walk_cycles, 0);
   }
 }
@@ -241,10 +255,10 @@ TEST(UnitBehaviour, KimAndAffineCyclesOfAHandWorkedTriangle) {
   // columns 0..6 hold 7, 6, ..., 1 covered pixels and column 7 none; down a
   // column I_u is constant and I_v moves 8 texels per pixel.
   Widths w;  // out_int 16 (span division), kim_frac 8, recip_latency 4
-  // The first triangle of a stream at setup_fifo_depth 1: accept, setup, the
-  // walker's load cycle, the walk, and the record.
-  ASSERT_EQ(w.setup_fifo_depth, 1);
-  const int64_t kAroundWalk = 1 + (4 + (43 + 3) / 4) + 1 + 1;  // as in CyclesOfAHandWorkedTriangle
+  // The first triangle of a stream at setup_fifo_depth 2: accept, setup, its
+  // cycle in the fill stage, the walker's load cycle, the walk, and the record.
+  ASSERT_EQ(w.setup_fifo_depth, 2);
+  const int64_t kAroundWalk = 1 + (4 + (43 + 3) / 4) + 2 + 1;  // as in CyclesOfAHandWorkedTriangle
   const ScreenTriangle s = testing::screen_triangle(
       {{{{0, 0, 2.0, 0, 0}}, {{8, 0, 2.0, 64, 0}}, {{0, 8, 2.0, 0, 64}}}});
   const UnitTriangle t = to_unit(s, w, 0);
@@ -366,9 +380,11 @@ TEST(UnitBehaviour, AffineSubdivisionStallsWhenSegmentsAreShorterThanTheDivider)
   // 8, each segment after the first stalls 12 - 8 = 4 cycles.
   Widths w;
   w.recip_latency = 12;
-  // Accept, setup, the walker's load cycle (setup_fifo_depth 1) and the record
-  // of the first triangle of a stream, as in CyclesOfAHandWorkedTriangle.
-  const int64_t kAroundWalk = 1 + (4 + (43 + 3) / 4) + 1 + 1;
+  // Accept, setup, the fill stage's cycle and the walker's load cycle
+  // (setup_fifo_depth 2) and the record of the first triangle of a stream, as
+  // in CyclesOfAHandWorkedTriangle.
+  ASSERT_EQ(w.setup_fifo_depth, 2);
+  const int64_t kAroundWalk = 1 + (4 + (43 + 3) / 4) + 2 + 1;
   const ScreenTriangle s = testing::screen_triangle(
       {{{{0.2, 0.0, 1.0, 0, 0}}, {{0.8, 0.0, 1.0, 0, 0}}, {{0.5, 40.0, 1.0, 0, 40}}}});
   TriangleRecord r;
@@ -401,8 +417,8 @@ TEST(UnitSchedule, ASourceThatWaitsForEachRecordLosesTheOverlap) {
   // Offered only from the first record's cycle on: accepted in 37, taken in
   // 52, recorded in 74.
   Widths w;
+  w.setup_fifo_depth = 1;
   ASSERT_EQ(derive(w).setup_cycles, 15);
-  ASSERT_EQ(w.setup_fifo_depth, 1);
   TrianglePhases walk;
   walk.kind = TrianglePhases::Kind::Walk;
   walk.walk = 20;
@@ -420,6 +436,8 @@ TEST(UnitBehaviour, TimingLayerTurnsWorkIntoPhasesAndComputeSkipsIt) {
   // lines over 4 columns holding 3 + 0 + 2 + 1 and 1 + 1 + 0 + 0 pixels.
   Widths w;
   w.recip_latency = 3;
+  w.setup_fifo_depth = 1;  // the back takes a triangle from the setup engine
+  w.table_banks = 1;
   const int64_t kSetup = derive(w).setup_cycles;
   TriangleWork work;
   work.walked = true;
@@ -466,7 +484,6 @@ TEST(UnitBehaviour, TimingLayerTurnsWorkIntoPhasesAndComputeSkipsIt) {
   const ScreenTriangle s = testing::screen_triangle(
       {{{{3.2, 4.7, 2.0, 10.0, 20.0}}, {{60.4, 10.1, 7.0, 90.5, 61.25}}, {{20.3, 50.9, 4.0, -30.75, 81.0}}}});
   const UnitTriangle t = to_unit(s, w, 0);
-  ASSERT_EQ(w.setup_fifo_depth, 1);
   for (const Design& d : all_designs()) {
     ScanUnit unit(d, w, 64, 64);
     std::vector<Fragment> computed, ran;
@@ -508,9 +525,10 @@ TrianglePhases band_phases(std::vector<TrianglePhases::Band> bands) {
 
 // Default widths: setup_cycles = 4 stages + 11 divider cycles (43 quotient
 // bits, 4 a cycle), as in CyclesOfAHandWorkedTriangle.
-Widths schedule_widths(int fifo_depth) {
+Widths schedule_widths(int fifo_depth, int banks = 1) {
   Widths w;
   w.setup_fifo_depth = fifo_depth;
+  w.table_banks = banks;
   return w;
 }
 constexpr int64_t kScheduleSetup = 15;
@@ -633,6 +651,54 @@ TEST(UnitSchedule, OverlappedBandsHoldTheFrontEndUntilTheirLastFill) {
   EXPECT_EQ(c.setup, 120 - 112);
 }
 
+TEST(UnitSchedule, TheFillStageAndASecondBankFillTheNextTriangleDuringThisWalk) {
+  // Triangles of one band (fill 10, walk 20), S = 15. By hand:
+  // - depth 2, two banks: triangle 0 is accepted in 0, set up by 15, moves into
+  //   the fill stage in 15 and is filled 16..25 (bank 0) while the back takes
+  //   it in 16; the back waits 17..25, loads the band in 26 and walks 26..45,
+  //   record 46. Triangle 1, accepted in 15, moves in at 30 (the stage has
+  //   been free since its fill ended in 25) and is filled 31..40 into bank 1;
+  //   the back takes it in 46 (the record cycle), waits in 47 (the band's load
+  //   cycle), walks 48..67, record 68. Triangle 2 goes into bank 0 again, free
+  //   since 45: record 90. The walk bounds it: 22 cycles a triangle.
+  // - depth 2, one bank: triangle 1's fill waits for triangle 0's walk to end
+  //   (45): it fills 46..55 and walks 56..75, record 76; triangle 2 moves in at
+  //   55, fills 76..85, record 106: fill and walk in turn, 30 a triangle.
+  // - depth 1, one bank (the fill reads the setup engine): triangle 1 is
+  //   accepted only as triangle 0's fill ends (25), taken in 46, filled 47..56,
+  //   record 77; triangle 2 accepted in 56, taken in 77, record 108.
+  struct Case {
+    int depth, banks;
+    std::vector<int64_t> records;
+  };
+  const Case cases[] = {{2, 2, {46, 68, 90}}, {2, 1, {46, 76, 106}}, {1, 1, {46, 77, 108}}};
+  const TrianglePhases band = band_phases({{10, 20}});
+  for (const Case& k : cases) {
+    UnitSchedule schedule(schedule_widths(k.depth, k.banks));
+    ASSERT_EQ(derive(schedule_widths(k.depth, k.banks)).setup_cycles, kScheduleSetup);
+    int64_t previous = -1;
+    for (size_t i = 0; i < k.records.size(); ++i) {
+      const TriangleCycles c = schedule.next(band);
+      EXPECT_EQ(schedule.last().record, k.records[i]) << "depth " << k.depth << " banks " << k.banks << " triangle " << i;
+      EXPECT_EQ(c.total(), i == 0 ? k.records[0] + 1 : k.records[i] - previous) << "depth " << k.depth;
+      EXPECT_EQ(c.walk, 20);
+      previous = schedule.last().record;
+    }
+  }
+  // Two banks within one triangle (depth 1): band 1 (fill 8) is filled into
+  // bank 1 during band 0's walk. Taken in 15; band 0 fills 16..25 and walks
+  // 26..37; band 1 fills 26..33, is loaded in 38 and walks 39..44; record 45.
+  UnitSchedule two_banks(schedule_widths(1, 2));
+  const TriangleCycles c = two_banks.next(band_phases({{10, 12}, {8, 6}}));
+  EXPECT_EQ(two_banks.last().record, 45);
+  EXPECT_EQ(c.setup, 16);
+  EXPECT_EQ(c.fill, 10 + 1);
+  EXPECT_EQ(c.walk, 12 + 6);
+  // The setup engine is free for the next triangle when band 1's fill ends (33).
+  two_banks.next(empty_phases());
+  EXPECT_EQ(two_banks.last().accept, 33);
+}
+
 TEST(UnitSchedule, TheFirstTriangleCountsFromItsAcceptAndResetStartsAgain) {
   for (const int depth : {0, 1}) {
     UnitSchedule schedule(schedule_widths(depth));
@@ -672,8 +738,8 @@ TEST(UnitSchedule, ClocksOfAStreamAddUpFromFirstAcceptToLastRecord) {
         }
       }
     }
-    for (const int depth : {0, 1}) {
-      UnitSchedule schedule(schedule_widths(depth));
+    for (const auto& [depth, banks] : {std::pair{0, 1}, {1, 1}, {1, 2}, {2, 1}, {2, 2}}) {
+      UnitSchedule schedule(schedule_widths(depth, banks));
       int64_t sum = 0;
       for (size_t i = 0; i < phases.size(); ++i) {
         const TrianglePhases& p = phases[i];
@@ -684,12 +750,15 @@ TEST(UnitSchedule, ClocksOfAStreamAddUpFromFirstAcceptToLastRecord) {
         if (depth == 0) {
           EXPECT_EQ(c.total(), serial) << "stream " << stream << " triangle " << i;
         } else {
-          const bool first_walk = i == 0 && p.kind == TrianglePhases::Kind::Walk;
-          EXPECT_LE(c.total(), serial + (first_walk ? 1 : 0)) << "stream " << stream << " triangle " << i;
+          // The first may cost the cycle it spends in the fill stage, and a
+          // per-pixel design its load cycle.
+          const int64_t first = (depth > 1 ? 1 : 0) + (p.kind == TrianglePhases::Kind::Walk ? 1 : 0);
+          EXPECT_LE(c.total(), serial + (i == 0 ? first : 0))
+              << "stream " << stream << " triangle " << i << " depth " << depth << " banks " << banks;
         }
         sum += c.total();
       }
-      EXPECT_EQ(sum, schedule.last().record + 1) << "stream " << stream << " depth " << depth;
+      EXPECT_EQ(sum, schedule.last().record + 1) << "stream " << stream << " depth " << depth << " banks " << banks;
     }
   }
 }

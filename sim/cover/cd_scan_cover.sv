@@ -9,7 +9,10 @@ module cd_scan_cover (
   input logic       clk_i,
   input logic       rst_ni,
   input logic [2:0] state_q,
-  input logic [2:0] front_q,
+  input logic [1:0] front_q,
+  input logic [1:0] fill_q,
+  input logic [1:0] full_q,
+  input logic       walk_bank_q,
   input logic       take,
   input logic [1:0] kind_q,
   input logic [2:0] segment_log2_q,
@@ -35,20 +38,26 @@ module cd_scan_cover (
   c_state_scan:      cover property (@(posedge clk_i) rst_ni && state_q == 3'd5);
   c_state_record:    cover property (@(posedge clk_i) rst_ni && state_q == 3'd6);
   c_state_drain:     cover property (@(posedge clk_i) rst_ni && state_q == 3'd7);
-  // The front's (FrIdle .. FrBandWait), and the overlap: the next triangle set
-  // up while the back walks, and taken in the cycle of the last one's record.
-  c_front_setup:      cover property (@(posedge clk_i) rst_ni && front_q == 3'd1);
-  c_front_offer:      cover property (@(posedge clk_i) rst_ni && front_q == 3'd2);
-  c_front_fill:       cover property (@(posedge clk_i) rst_ni && front_q == 3'd3);
-  c_front_band_wait:  cover property (@(posedge clk_i) rst_ni && front_q == 3'd4);
-  c_setup_during_walk: cover property (@(posedge clk_i) rst_ni && front_q == 3'd1 &&
+  // The front's (FrIdle .. FrFillHeld) and the fill's (FlIdle .. FlBandWait),
+  // and the overlap: the next triangle set up while the back walks, a band
+  // filled while the back walks another, a band in the table before the back
+  // asks for it, and a triangle taken in the cycle of the last one's record.
+  c_front_setup:      cover property (@(posedge clk_i) rst_ni && front_q == 2'd1);
+  c_front_offer:      cover property (@(posedge clk_i) rst_ni && front_q == 2'd2);
+  c_front_fill_held:  cover property (@(posedge clk_i) rst_ni && front_q == 2'd3);
+  c_fill_filling:     cover property (@(posedge clk_i) rst_ni && fill_q == 2'd1);
+  c_fill_band_wait:   cover property (@(posedge clk_i) rst_ni && fill_q == 2'd2);
+  c_setup_during_walk: cover property (@(posedge clk_i) rst_ni && front_q == 2'd1 &&
                                        (state_q == 3'd3 || state_q == 3'd4));
+  c_fill_during_walk: cover property (@(posedge clk_i) rst_ni && fill_q == 2'd1 &&
+                                      (state_q == 3'd3 || state_q == 3'd4));
+  c_band_filled_ahead: cover property (@(posedge clk_i) rst_ni && state_q == 3'd1 && full_q[walk_bank_q]);
   c_take_at_record:   cover property (@(posedge clk_i) rst_ni && take && state_q == 3'd6);
 
   // Back-pressure: a fragment held by the sink (the bench never holds a record),
   // and such a hold freezing a triangle in setup.
   c_fragment_stall: cover property (@(posedge clk_i) rst_ni && frag_valid_o && !frag_ready_i);
-  c_hold_in_setup:  cover property (@(posedge clk_i) rst_ni && frag_valid_o && !frag_ready_i && front_q == 3'd1);
+  c_hold_in_setup:  cover property (@(posedge clk_i) rst_ni && frag_valid_o && !frag_ready_i && front_q == 2'd1);
 
   // Triangles finished with each flag (model/flags.hpp): a band refill sets
   // banded; the saturations are those of the table and of the output.
@@ -82,6 +91,6 @@ module cd_scan_cover (
 endmodule
 
 bind cd_scan_unit cd_scan_cover u_cover (
-  .clk_i, .rst_ni, .state_q, .front_q, .take, .kind_q, .segment_log2_q, .kim_pipelined_q, .density_log2_q,
+  .clk_i, .rst_ni, .state_q, .front_q, .fill_q, .full_q, .walk_bank_q, .take, .kind_q, .segment_log2_q, .kim_pipelined_q, .density_log2_q,
   .correction_q, .frag_valid_o, .frag_ready_i, .rec_valid_o, .rec_ready_i, .rec_flags_o,
   .obs_setup_valid_o, .obs_setup_bits_o);

@@ -254,14 +254,17 @@ module cd_scan_vectors_tb;
     presented = '0;
     repeat (3) @(negedge clk);
     rst_n = 1'b1;
-    // Sample and drive on the falling edge, as sim/bench.hpp does: every value
-    // read is the cycle's settled state, every value written is what the
-    // unit samples at the next rising edge.
+    // Drive on the falling edge and sample 1 time unit later, as sim/bench.hpp
+    // does: every value read is the cycle's settled state, every value written
+    // is what the unit samples at the next rising edge.
     while (done < Triangles && !hung &&
            (max_mismatches == 0 || mismatches < int'(max_mismatches))) begin
       @(negedge clk);
       random_state = next_random(random_state);
       frag_ready = !(backpressure_permille > 0 && random_state % 1000 < backpressure_permille);
+      // Let the unit's outputs settle on the new frag_ready: a refused fragment
+      // holds the unit, and the table write or setup result of this cycle with it.
+      #1;
       if (frag_valid) begin
         if (!frag_ready) stalls++;
         else begin
