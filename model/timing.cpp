@@ -127,7 +127,7 @@ TriangleCycles UnitSchedule::next(const TrianglePhases& phases) {
       record = taken + phases.scan + 1;
       break;
     case TrianglePhases::Kind::Walk:
-      // Overlapped, the walker loads the held setup results in one cycle of its own.
+      // Overlapped, the walker loads its context in one cycle of its own.
       c.walk = phases.walk + (fifo_depth_ > 0 ? 1 : 0);
       record = taken + c.walk + 1;
       break;

@@ -8,10 +8,10 @@
 // that work into the triangle's phases, TrianglePhases: the cycles each band
 // fills the table and walks, or the cycles one walk takes; a pure function of
 // the work. UnitSchedule places the phases of a stream of triangles on the
-// unit's clock: the front end (accept, setup engine, table fill) and the back
-// end (column walker and datapath) each hold one triangle at a time, and with
-// setup_fifo_depth = 1 the front sets up the next triangle while the back
-// walks this one (docs/microarchitecture.md, "Cycles per triangle"). A caller
+// unit's clock: the setup engine, the fill (with setup_fifo_depth 2 a stage
+// of its own that holds a triangle) and the back end (column walker and
+// datapath) each hold one triangle at a time, and the table's banks hold a
+// band each (docs/microarchitecture.md, "Cycles per triangle"). A caller
 // that needs no cycles (an error sweep) can skip both: ScanUnit::compute.
 //
 // Attribution: a triangle's clocks are those from the cycle after the previous
@@ -76,13 +76,14 @@ struct TrianglePhases {
 
 // A triangle's clocks (the attribution above), by what bound them.
 struct TriangleCycles {
-  // The back end idle, waiting for the front end to finish this triangle's
-  // setup; the accept cycle is in it.
+  // The back end idle, waiting for this triangle to be set up (and, at
+  // setup_fifo_depth 2, to pass the fill stage); the accept cycle is in it.
   int64_t setup = 0;
-  // Filling the table (constant depth).
+  // The back end waiting for each band to be in the table, the band's load
+  // cycle included (constant depth).
   int64_t fill = 0;
-  // Walking the columns, and for a per-pixel design at setup_fifo_depth 1 the
-  // cycle that loads the walker from the held setup results.
+  // Walking the columns, and for a per-pixel design at setup_fifo_depth 1 or
+  // 2 the cycle that loads the walker from its context.
   int64_t walk = 0;
   // The cycle the record is offered.
   int64_t record = 0;

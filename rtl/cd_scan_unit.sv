@@ -24,8 +24,8 @@
 // Cycles (docs/microarchitecture.md, model/timing.cpp): a walk takes one cycle
 // per column of every band and one per pixel (COLUMN, PIXEL); a fill lines +
 // recip_latency; divide DRAINs its reciprocal pipeline, Kim its fraction stage
-// (rtl/kim_datapath.sv); a per-pixel design at depth 1 spends an INIT cycle
-// loading the walker from the context. A fragment offered and not taken holds
+// (rtl/kim_datapath.sv); a per-pixel design at depth 1 or 2 spends an INIT
+// cycle loading the walker from the back's context. A fragment offered and not taken holds
 // the whole unit for the cycle. The record counts the clocks from the cycle
 // after the previous record was delivered (the first triangle: from its accept)
 // to its own delivery, held cycles included: the model's schedule, plus the
@@ -150,7 +150,7 @@ module cd_scan_unit #(
   localparam int FifoDepth    = `CD_SETUP_FIFO_DEPTH;
 
   localparam logic [2:0] StIdle     = 3'd0;
-  localparam logic [2:0] StFillWait = 3'd1;  // the front fills the table for the next band
+  localparam logic [2:0] StFillWait = 3'd1;  // the walker waits for its band to be in the table
   localparam logic [2:0] StInit     = 3'd2;  // the walker loads from the context
   localparam logic [2:0] StColumn   = 3'd3;
   localparam logic [2:0] StPixel    = 3'd4;
@@ -174,7 +174,7 @@ module cd_scan_unit #(
   // Front: accepts a triangle and runs the setup engine. Fill: fills the table
   // band by band, into the next of TableBanks banks once the walker is done
   // with the band it held. Back: walks the columns and runs the datapath
-  // (docs/microarchitecture.md, "Front and back"). FifoDepth = 2 puts a fill
+  // (docs/rtl.md, "Front and back"). FifoDepth = 2 puts a fill
   // stage between front and back that holds a triangle with a copy of
   // everything (contexts, the fill's operands), so the front sets up the
   // next triangle while this one is filled and the one before walked. With 1
@@ -206,7 +206,7 @@ module cd_scan_unit #(
   logic signed [BandBits-1:0] fl_band_lines_d, fl_band_lines_q;  // the band being filled, guards included
   logic signed [BandBits-1:0] fl_per_band_d, fl_per_band_q;      // pixel lines per band
   logic        fl_guard_d, fl_guard_q;
-  logic        fill_start;   // the fill takes a triangle with bands (from the setup engine's registers)
+  logic        fill_start;   // the fill takes a triangle with bands (its first band from the setup engine's results)
   logic        fill_done;    // the fill's last cycle of its triangle's last band
   logic        more_fill;    // the fill's triangle has a band after this one
 
@@ -263,8 +263,9 @@ module cd_scan_unit #(
 
   // ---------------------------------------------------------------- blocks
   // The setup engine's results (s_*), and the context the back walks from
-  // (the same names without s_): a copy taken with the triangle when
-  // FifoDepth = 1, the setup engine's registers themselves when 0.
+  // (the same names without s_): the back's copy, taken with the triangle when
+  // FifoDepth >= 1 (at 2 from the fill stage's copy, p_*), the setup engine's
+  // registers themselves when 0.
   logic               setup_empty, setup_no_lines;
   logic signed [LineBits-1:0] s_pixel_line_lo, s_pixel_line_hi;
   logic [7:0]         setup_flags;
@@ -1099,7 +1100,7 @@ module cd_scan_unit #(
         lines_d = lines_q + CountBits'(band_lines_d);
       end
       StInit: begin
-        // FifoDepth = 1: the walker loads from the context taken last cycle.
+        // FifoDepth >= 1: the walker loads from the context taken last cycle.
         state_d = StColumn;
         column_init = 1'b1;
       end
