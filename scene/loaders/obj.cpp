@@ -113,7 +113,8 @@ void check_obj_line(std::string_view directive, const std::vector<std::string_vi
 
 // The OBJ text tinyobjloader sees: vertices, texture coordinates, normals,
 // faces, groups, smoothing and materials; every other line (vw, vp, l, p,
-// curv, ...) becomes empty so that line numbers stay the same. The v, vt, vn
+// curv, ...) becomes empty so that line numbers stay the same (every line
+// end becomes \n). The v, vt, vn
 // and f lines are checked (check_obj_line) and passed on without comments.
 std::string filter_obj(std::string_view text, const std::string& name, size_t* dropped) {
   static const std::set<std::string, std::less<>> kept = {"v", "vt", "vn", "f", "o", "g", "s", "usemtl", "mtllib"};
@@ -124,10 +125,12 @@ std::string filter_obj(std::string_view text, const std::string& name, size_t* d
   size_t line_number = 0;
   std::vector<std::string_view> words;
   for (size_t start = 0; start < text.size();) {
-    size_t end = text.find('\n', start);
+    // Lines end as tinyobjloader ends them: at \n, \r\n or a lone \r, so
+    // that a directive after a lone \r is filtered as the line it is there.
+    size_t end = text.find_first_of("\r\n", start);
     if (end == std::string_view::npos) end = text.size();
     const std::string_view line = text.substr(start, end - start);
-    start = end + 1;
+    start = end + (text.compare(end, 2, "\r\n") == 0 ? 2 : 1);
     ++line_number;
     const size_t first = line.find_first_not_of(" \t\r");
     const size_t last = first == std::string_view::npos ? first : line.find_first_of(" \t\r", first);
