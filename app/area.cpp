@@ -272,8 +272,9 @@ AreaReport area_report(const Design& design, const Widths& widths, const UnitCon
   report.widths = widths;
   report.log_path = (config.dir / "unit.log").string();
   report.sram_bits = config.sram_depth * config.word_bits;
-  report.sram_area_um2 =
-      static_cast<double>(report.sram_bits) * options.sram_cell_um2 / options.sram_efficiency;
+  report.sram_two_port = report.sram_bits > 0 && widths.early_walk != 0;
+  report.sram_area_um2 = static_cast<double>(report.sram_bits) * options.sram_cell_um2 *
+                         (report.sram_two_port ? options.sram_two_port_factor : 1.0) / options.sram_efficiency;
   const double nand2 = liberty_cell_area(options.liberty, "NAND2X1");
   report.synthesis_seconds = synthesised.at("seconds").get<double>();
   for (const auto& b : synthesised.at("blocks")) {
@@ -370,7 +371,11 @@ nlohmann::json area_json(const AreaReport& r, const AreaOptions& options) {
           {"logic_area_um2", r.logic_area_um2},
           {"sram_bits", r.sram_bits},
           {"sram_area_um2", r.sram_area_um2},
-          {"sram_model", {{"bit_cell_um2", options.sram_cell_um2}, {"array_efficiency", options.sram_efficiency}}},
+          {"sram_two_port", r.sram_two_port},
+          {"sram_model",
+           {{"bit_cell_um2", options.sram_cell_um2},
+            {"array_efficiency", options.sram_efficiency},
+            {"two_port_factor", options.sram_two_port_factor}}},
           {"flop_table_area_um2", r.flop_table_area_um2},
           {"flop_table_lines_synthesised", r.flop_table_lines_synthesised},
           {"total_area_um2", r.total_area_um2},
@@ -458,6 +463,10 @@ CLI::App* add_area_command(CLI::App& app, AreaOptions& options) {
                   "SRAM array efficiency: bit cells / macro area (docs/area.md)")
       ->check(CLI::Range(0.05, 1.0))
       ->capture_default_str();
+  cmd->add_option("--sram-two-port-factor", options.sram_two_port_factor,
+                  "area of a two-port (read + write) bit cell over a single-port one, for early_walk (docs/area.md)")
+      ->check(CLI::Range(1.0, 4.0))
+      ->capture_default_str();
   return cmd;
 }
 
@@ -481,8 +490,10 @@ int run_area_command(const AreaOptions& options) {
   } else {
     fmt::print("\nscanline table: {} bits ({} lines x {} bits, flags included)\n", r.sram_bits,
                r.sram_bits / derive(r.widths).word_bits, derive(r.widths).word_bits);
-    fmt::print("  as SRAM:        {:>14.0f} um^2 ({} um^2 bit cell / {} array efficiency)\n",
-               r.sram_area_um2, options.sram_cell_um2, options.sram_efficiency);
+    fmt::print("  as SRAM:        {:>14.0f} um^2 ({} um^2 bit cell{} / {} array efficiency)\n",
+               r.sram_area_um2, options.sram_cell_um2,
+               r.sram_two_port ? fmt::format(" x {:.3g} two-port (early_walk)", options.sram_two_port_factor) : "",
+               options.sram_efficiency);
     fmt::print("  as flip-flops:  {:>14.0f} um^2 (synthesised at {} lines{})\n", r.flop_table_area_um2,
                r.flop_table_lines_synthesised,
                r.flop_table_lines_synthesised * derive(r.widths).word_bits == r.sram_bits

@@ -28,6 +28,7 @@ struct AreaReport {
   std::vector<BlockArea> blocks;  // the blocks present in this design, then control
   double logic_area_um2 = 0;
   int64_t sram_bits = 0;
+  bool sram_two_port = false;      // early_walk: a read and a write port
   double sram_area_um2 = 0;
   double flop_table_area_um2 = 0;  // the same table from flip-flops
   int64_t flop_table_lines_synthesised = 0;
@@ -46,6 +47,9 @@ struct AreaOptions {
   std::string liberty = "/usr/share/qflow/tech/osu018/osu018_stdcells.lib";
   double sram_cell_um2 = 6.0;    // docs/area.md: 600 lambda^2, lambda = 0.10 um (osu018's SCMOS rules)
   double sram_efficiency = 0.65; // cell array / macro area
+  // early_walk reads and writes the table in one cycle: a two-port (8T) bit
+  // cell, this many times the 6T cell (docs/area.md).
+  double sram_two_port_factor = 4.0 / 3.0;
   bool quiet = false;            // no "synthesising" line (batches show a progress bar instead)
   bool estimate = false;         // the component area model instead of synthesis (area_model.hpp)
   std::string model_path;        // its calibration (default: rtl/area_model.json)

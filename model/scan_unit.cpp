@@ -108,6 +108,7 @@ TriangleRecord ScanUnit::run_constant_depth(const Setup& s, std::vector<Fragment
       for (int64_t minor = pixels.lo; minor <= pixels.hi; ++minor) {
         const int64_t line = line_index(s, c, minor);
         const bool correct = s.correction && c.direction != 0;
+        work_.read_tops.push_back(static_cast<int32_t>(line - (band_lo - guard) + (correct && c.direction > 0 ? 1 : 0)));
         const CorrectedFragment out =
             correction_adder(table_.read(line), correct ? &table_.read(line + c.direction) : nullptr,
                              c.offset, c.weight, widths_);

@@ -23,7 +23,13 @@ namespace {
 // pixels, ends the pass if it stands on the last column without any, and
 // otherwise hands over to column cycles, one per column, until a column with
 // pixels (loaded in its column cycle) or the last column.
-int64_t pass_cycles(std::vector<int32_t>::const_iterator first, std::vector<int32_t>::const_iterator last) {
+//
+// pixel(cycle) is called for each pixel in emission order with the pass cycle
+// (0 = the first column cycle) in which it moves on; its table read is issued
+// the cycle before, as its span is loaded or as the pixel before it moves.
+template <typename PixelCycle>
+int64_t pass_cycles(std::vector<int32_t>::const_iterator first, std::vector<int32_t>::const_iterator last,
+                    PixelCycle&& pixel) {
   const auto columns = static_cast<size_t>(last - first);
   auto pixels = [&](size_t c) { return static_cast<int64_t>(first[static_cast<std::ptrdiff_t>(c)]); };
   int64_t cycles = 0;
@@ -36,6 +42,7 @@ int64_t pass_cycles(std::vector<int32_t>::const_iterator first, std::vector<int3
     }
     size_t span = column;
     while (true) {
+      for (int64_t i = 0; i < pixels(span); ++i) pixel(cycles + i);
       cycles += pixels(span);
       if (span + 1 == columns) return cycles;
       size_t walker = span + 1;
@@ -51,6 +58,10 @@ int64_t pass_cycles(std::vector<int32_t>::const_iterator first, std::vector<int3
     }
   }
   return cycles;
+}
+
+int64_t pass_cycles(std::vector<int32_t>::const_iterator first, std::vector<int32_t>::const_iterator last) {
+  return pass_cycles(first, last, [](int64_t) {});
 }
 
 }  // namespace
@@ -69,10 +80,20 @@ TrianglePhases UnitTiming::phases(const TriangleWork& work) const {
       // Fill: one line per cycle into the reciprocal pipeline, drained per band.
       // Walk: the band's pass over the columns.
       p.kind = TrianglePhases::Kind::Bands;
+      // A read of top address A issued in pass cycle c waits for the line
+      // written in the band's fill cycle recip_latency + A (read_lag), and
+      // the pass's last cycle, which frees the bank, for the band's last line.
       const auto columns = static_cast<std::ptrdiff_t>(work.columns);
+      auto top = work.read_tops.begin();
       for (size_t band = 0; band < work.band_lines.size(); ++band) {
         const auto pass = work.column_pixels.begin() + static_cast<std::ptrdiff_t>(band) * columns;
-        p.bands.push_back({work.band_lines[band] + widths_.recip_latency, pass_cycles(pass, pass + columns)});
+        TrianglePhases::Band b;
+        b.fill = work.band_lines[band] + widths_.recip_latency;
+        b.walk = pass_cycles(pass, pass + columns, [&](int64_t cycle) {
+          b.read_lag = std::max(b.read_lag, widths_.recip_latency + 1 + *top++ - (cycle - 1));
+        });
+        b.read_lag = std::max(b.read_lag, b.fill - b.walk + 1);
+        p.bands.push_back(b);
       }
       break;
     }
@@ -96,7 +117,8 @@ TrianglePhases UnitTiming::phases(const TriangleWork& work) const {
 UnitSchedule::UnitSchedule(const Widths& widths)
     : setup_cycles_(derive(widths).setup_cycles),
       fifo_depth_(widths.setup_fifo_depth),
-      banks_(widths.table_banks) {}
+      banks_(widths.table_banks),
+      early_walk_(widths.early_walk != 0) {}
 
 void UnitSchedule::reset() {
   front_free_ = 0;
@@ -136,16 +158,18 @@ TriangleCycles UnitSchedule::next(const TrianglePhases& phases) {
       // or the previous band's last fill cycle) and fills from the next cycle,
       // once its bank's previous band has been walked. The back end waits for
       // each band from `waits` and walks it from the cycle after its last fill
-      // cycle.
+      // cycle, or with early_walk after its first, stalling where a read
+      // waits for its line (never without early_walk: read_lag <= fill).
       int64_t decided = fifo_depth_ > 1 ? staged : taken;
       int64_t waits = taken + 1;
       for (const TrianglePhases::Band& band : phases.bands) {
         int64_t& bank_done = band_done_[static_cast<size_t>(bands_++ % banks_)];
         const int64_t fill_start = std::max(decided, bank_done) + 1;
         const int64_t fill_last = fill_start + band.fill - 1;
-        const int64_t walk_start = std::max(waits, fill_last) + 1;
-        bank_done = walk_start + band.walk - 1;
-        c.fill += walk_start - waits;
+        const int64_t walk_start = std::max(waits, early_walk_ ? fill_start : fill_last) + 1;
+        const int64_t stalls = std::max<int64_t>(0, fill_start + band.read_lag - walk_start);
+        bank_done = walk_start + stalls + band.walk - 1;
+        c.fill += walk_start - waits + stalls;
         c.walk += band.walk;
         decided = fill_last;
         waits = bank_done + 1;

@@ -45,6 +45,10 @@ struct TriangleWork {
   // from the pixel before it in the span (max of |du|, |dv|); 0 for the
   // first pixel of a span, whose integer part comes from the span division.
   std::vector<int64_t> kim_steps;
+  // Constant depth: for each pixel in emission order, the highest table
+  // address (line - band base, guards included) its read touches: its own
+  // line's, or its correction neighbour's when that lies above.
+  std::vector<int32_t> read_tops;
 
   void clear() {
     walked = false;
@@ -52,6 +56,7 @@ struct TriangleWork {
     band_lines.clear();
     column_pixels.clear();
     kim_steps.clear();
+    read_tops.clear();
   }
 };
 
@@ -67,6 +72,13 @@ struct TrianglePhases {
   struct Band {
     int64_t fill = 0;  // the band's lines + recip_latency
     int64_t walk = 0;  // columns + the pixels of the band's pass
+    // early_walk: the walk reads no line before it is written, and ends no
+    // sooner than the cycle after its last fill cycle, if it starts at least
+    // this many cycles after the band's first fill cycle; else it stalls the
+    // difference. The max of fill - walk + 1 and, over its reads,
+    // recip_latency + 1 + the read's top address - the pass cycle it is
+    // issued in.
+    int64_t read_lag = 0;
   };
   Kind kind = Kind::Empty;
   int64_t scan = 0;          // Scan: one cycle per column
@@ -133,7 +145,8 @@ struct ScheduledTriangle {
 //   band is filled.
 // - Each band is filled into the next of table_banks banks once the band
 //   before in that bank has been walked, and walked from the cycle after its
-//   last fill cycle.
+//   last fill cycle; with early_walk from the cycle after its first, the
+//   walk stalling until each line it reads is written.
 class UnitSchedule {
  public:
   explicit UnitSchedule(const Widths& widths);
@@ -153,6 +166,7 @@ class UnitSchedule {
   int64_t setup_cycles_;
   int64_t fifo_depth_;
   int64_t banks_;
+  bool early_walk_;
   bool offer_after_record_ = false;
   int64_t front_free_ = 0;  // first cycle the setup engine may accept a triangle
   int64_t slot_free_ = 0;   // first cycle the fill stage may take one (depth 2)

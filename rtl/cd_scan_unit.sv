@@ -170,6 +170,10 @@ module cd_scan_unit #(
 
   localparam int TableBanks   = `CD_TABLE_BANKS;
   localparam bit FillStage    = FifoDepth > 1;
+  // The walker starts a band as soon as its fill starts, and stalls the back
+  // in any cycle whose table read needs a line not yet written (the table is
+  // then read and written in the same cycle: a two-port SRAM).
+  localparam bit EarlyWalk    = `CD_EARLY_WALK != 0;
 
   // Front: accepts a triangle and runs the setup engine. Fill: fills the table
   // band by band, into the next of TableBanks banks once the walker is done
@@ -216,7 +220,8 @@ module cd_scan_unit #(
   logic        fill_bank_d, fill_bank_q, walk_bank_d, walk_bank_q, next_fill_bank;
   logic [1:0]  full_d, full_q, bank_free;
   logic [DescBits-1:0] walk_desc, held_desc;
-  logic        band_avail;   // the band the walker waits for is in the table (or its fill ends now)
+  logic        band_avail;   // the band the walker waits for is in the table (or its fill ends now; EarlyWalk: starts)
+  logic        starve;       // EarlyWalk: the back stalls, its next read's line not yet written
   logic        table_band_done;
 
   // The fill stage (FifoDepth = 2): the triangle there (p_*), handed on to
@@ -817,7 +822,7 @@ module cd_scan_unit #(
   // ---------------------------------------------------------------- control
   logic signed [BandBits-1:0] guard, depth, pixel_lines, lines_per_band, first_band_hi;  // the front's triangle
   logic signed [BandBits-1:0] next_band_lo, next_band_hi;                                 // the fill's
-  logic signed [BandBits-1:0] read_line, read_addr;
+  logic signed [BandBits-1:0] read_addr;
   logic [PixelBits-1:0] read_minor;
   logic               read_minor_valid;
   logic               band_done, last_column;
@@ -932,7 +937,8 @@ module cd_scan_unit #(
   assign next_fill_bank = TableBanks > 1 ? fill_bank_q ^ band_ready : 1'b0;
   assign fill_bank_d = next_fill_bank;
   assign walk_bank_d = TableBanks > 1 ? walk_bank_q ^ table_band_done : 1'b0;
-  assign band_avail = full_q[walk_bank_q] || (band_ready && fill_bank_q == walk_bank_q);
+  assign band_avail = full_q[walk_bank_q] ||
+                      ((EarlyWalk ? fill_q == FlFill : band_ready) && fill_bank_q == walk_bank_q);
   assign walk_desc = full_q[walk_bank_q] ? held_desc : {fl_band_lo_q, fl_band_hi_q, fl_band_lines_q};
   if (TableBanks > 1) begin : gen_two_descs
     logic [DescBits-1:0] desc0_q, desc1_q;
@@ -1249,8 +1255,9 @@ module cd_scan_unit #(
       end
     end
 
-    // Held: no block is strobed (the registers keep their values).
-    if (hold) begin
+    // Held, or starved: no block is strobed (the registers keep their values).
+    if (hold || starve) begin
+      band_done = 1'b0;
       column_init = 1'b0;
       column_advance = 1'b0;
       read_minor_valid = 1'b0;
@@ -1260,10 +1267,58 @@ module cd_scan_unit #(
     end
 
     // Table read for the next pixel: its line, and the neighbour line.
-    read_line = (BandBits'($signed({1'b0, read_minor})) - BandBits'($signed({1'b0, minor_lo})))
-                <<< density_log2_q;
-    read_line = read_line - (span_load ? BandBits'(column_line_shift) : BandBits'(line_shift_q));
-    read_addr = read_line - (BandBits'(band_lo_q) - BandBits'($signed({1'b0, correction_q})));
+    read_addr = table_addr(read_minor, span_load ? column_line_shift : line_shift_q);
+  end
+
+  // A table address: line - band base, for minor index `minor` in a column
+  // whose lines are shifted by `shift`.
+  function automatic logic signed [BandBits-1:0] table_addr(input logic [PixelBits-1:0] minor,
+                                                             input logic signed [LineBits-1:0] shift);
+    logic signed [BandBits-1:0] line;
+    line = (BandBits'($signed({1'b0, minor})) - BandBits'($signed({1'b0, minor_lo}))) <<< density_log2_q;
+    line = line - BandBits'(shift);
+    table_addr = line - (BandBits'(band_lo_q) - BandBits'($signed({1'b0, correction_q})));
+  endfunction
+
+  // EarlyWalk: the back's next table read and the highest address it touches
+  // (its own line, or the correction neighbour above), known before the pixel
+  // moves, so that a starved cycle offers no fragment and a fragment offered
+  // is never withdrawn. Line A of a band is written in its fill cycle
+  // RecipLatency + A, so a read of top address A may go once fl_count_q, the
+  // band's fill cycle, is past it; once the band is full, always. The band's
+  // last walk cycle, which frees its bank, waits for the band to be full.
+  if (EarlyWalk && HasTable) begin : gen_early_walk
+    localparam int CmpBits = (BandBits > StepCountBits ? BandBits : StepCountBits) + 2;
+    logic                       next_read, next_end, at_last_column;
+    logic [PixelBits-1:0]       next_minor;
+    logic signed [LineBits-1:0] next_shift;
+    logic signed [1:0]          next_direction;
+    logic signed [BandBits-1:0] next_top;
+    always_comb begin
+      next_read = 1'b0;
+      next_minor = minor_q + PixelBits'(1);
+      next_shift = line_shift_q;
+      next_direction = direction_q;
+      if (state_q == StColumn || (state_q == StPixel && minor_q == last_q)) begin
+        // A span load: in its column's cycle, or at the last pixel of the span before.
+        next_read = column_has_pixels && (state_q == StColumn || !span_last_q);
+        next_minor = column_first;
+        next_shift = column_line_shift;
+        next_direction = column_direction;
+      end else if (state_q == StPixel) begin
+        next_read = 1'b1;
+      end
+      next_top = table_addr(next_minor, next_shift) +
+                 BandBits'($signed({1'b0, correction_q && next_direction == 2'sd1}));
+      at_last_column = (PixelBits+1)'(offset_q) == major_count - (PixelBits+1)'(1);
+      next_end = (state_q == StColumn && !column_has_pixels && at_last_column) ||
+                 (state_q == StPixel && minor_q == last_q && (span_last_q || (!column_has_pixels && at_last_column)));
+    end
+    assign starve = !per_pixel && !full_q[walk_bank_q] &&
+                    (next_end || (next_read && CmpBits'(next_top) + CmpBits'(RecipLatency) >=
+                                                  CmpBits'($signed({1'b0, fl_count_q}))));
+  end else begin : gen_no_early_walk
+    assign starve = 1'b0;
   end
 
   // The record's clocks: every cycle from the one after the last record was
@@ -1310,6 +1365,31 @@ module cd_scan_unit #(
       fill_bank_q <= 1'b0;
       walk_bank_q <= 1'b0;
       full_q <= '0;
+    end else if (!hold) begin
+      front_q <= front_d;
+      fcount_q <= fcount_d;
+      f_kind_q <= f_kind_d;
+      f_segment_log2_q <= f_segment_log2_d;
+      f_kim_pipelined_q <= f_kim_pipelined_d;
+      f_density_log2_q <= f_density_log2_d;
+      f_correction_q <= f_correction_d;
+      fill_q <= fill_d;
+      fl_count_q <= fl_count_d;
+      fl_band_lo_q <= fl_band_lo_d;
+      fl_band_hi_q <= fl_band_hi_d;
+      fl_band_lines_q <= fl_band_lines_d;
+      fl_line_hi_q <= fl_line_hi_d;
+      fl_per_band_q <= fl_per_band_d;
+      fl_guard_q <= fl_guard_d;
+      fill_bank_q <= fill_bank_d;
+      walk_bank_q <= walk_bank_d;
+      full_q <= full_d;
+    end
+  end
+
+  // The back's registers also keep their values while it starves.
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
       state_q <= StIdle;
       count_q <= '0;
       b_kind_q <= '0;
@@ -1333,25 +1413,7 @@ module cd_scan_unit #(
       bands_q <= '0;
       pixels_q <= '0;
       flags_q <= '0;
-    end else if (!hold) begin
-      front_q <= front_d;
-      fcount_q <= fcount_d;
-      f_kind_q <= f_kind_d;
-      f_segment_log2_q <= f_segment_log2_d;
-      f_kim_pipelined_q <= f_kim_pipelined_d;
-      f_density_log2_q <= f_density_log2_d;
-      f_correction_q <= f_correction_d;
-      fill_q <= fill_d;
-      fl_count_q <= fl_count_d;
-      fl_band_lo_q <= fl_band_lo_d;
-      fl_band_hi_q <= fl_band_hi_d;
-      fl_band_lines_q <= fl_band_lines_d;
-      fl_line_hi_q <= fl_line_hi_d;
-      fl_per_band_q <= fl_per_band_d;
-      fl_guard_q <= fl_guard_d;
-      fill_bank_q <= fill_bank_d;
-      walk_bank_q <= walk_bank_d;
-      full_q <= full_d;
+    end else if (!hold && !starve) begin
       state_q <= state_d;
       count_q <= count_d;
       b_kind_q <= b_kind_d;
@@ -1384,7 +1446,7 @@ module cd_scan_unit #(
                       mode_kim ? kim_tag[PixelBits +: PixelBits] : major_q;
   assign frag_minor = mode_divide ? pipe_tag[0 +: PixelBits] : mode_kim ? kim_tag[0 +: PixelBits] : minor_q;
   assign frag_valid_o = mode_divide ? pipe_valid : mode_kim ? kim_valid :
-                        state_q == StPixel && (!mode_sub || sub_valid);
+                        state_q == StPixel && (!mode_sub || sub_valid) && !starve;
   assign frag_x_o = setup_x_major ? 16'(frag_major) : 16'(frag_minor);
   assign frag_y_o = setup_x_major ? 16'(frag_minor) : 16'(frag_major);
   assign frag_u_o = 64'(frag_u);

@@ -3,7 +3,9 @@
 // Split into an even and an odd bank by address, so that a pixel's line and
 // its correction neighbour (address +- 1) come from different single-port
 // banks in the same cycle. Reads are synchronous: data appears the cycle after
-// the address. Writes (the fill) and reads (the walk) never share a cycle.
+// the address. Writes (the fill) and reads (the walk) share a cycle only with
+// early_walk, and then never an address: a read goes only to lines written in
+// earlier cycles. Each bank is then a two-port SRAM (one read, one write port).
 `include "cd_widths.svh"
 `default_nettype none
 

@@ -50,7 +50,7 @@ uncovered = {u["point"] for u in cov["uncovered"] if u["type"] == "user"}
 for p in ["c_state_" + s for s in ("idle", "fill_wait", "init", "column", "pixel", "scan", "record", "drain")] + \
          ["c_front_setup", "c_front_offer", "c_fill_filling", "c_fill_band_wait"] + \
          ["c_setup_during_walk", "c_fill_during_walk", "c_band_filled_ahead", "c_take_at_record",
-          "c_hold_in_setup"] + \
+          "c_hold_in_setup", "c_walk_during_own_fill", "c_walk_starved"] + \
          (["c_front_fill_held"] if scale > 1 else []) + \
          ["c_design_" + s for s in ("cd_none", "cd_linear", "cd_dense2", "cd_dense4", "cd_dense2_linear", "divide",
                                     "kim_iter", "kim_pipe", "affine_sub16", "affine_sub8", "affine")] + \

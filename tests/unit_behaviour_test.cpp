@@ -444,6 +444,7 @@ TEST(UnitBehaviour, TimingLayerTurnsWorkIntoPhasesAndComputeSkipsIt) {
   work.columns = 4;
   work.band_lines = {7, 5};
   work.column_pixels = {3, 0, 2, 1, 1, 1, 0, 0};
+  work.read_tops = {1, 2, 3, 5, 6, 4, 2, 4};  // each pixel's highest table address
   const TrianglePhases cd = UnitTiming(find_design("cd-linear"), w).phases(work);
   EXPECT_EQ(cd.kind, TrianglePhases::Kind::Bands);
   ASSERT_EQ(cd.bands.size(), 2u);
@@ -457,6 +458,13 @@ TEST(UnitBehaviour, TimingLayerTurnsWorkIntoPhasesAndComputeSkipsIt) {
   EXPECT_EQ(cd.bands[0].walk, 1 + 6);
   EXPECT_EQ(cd.bands[1].fill, 5 + 3);
   EXPECT_EQ(cd.bands[1].walk, 3 + 2);
+  // Each pixel's read goes the cycle before its pixel cycle. Pass 1 reads
+  // addresses 1, 2, 3, 5, 6, 4 in pass cycles 0..5: a read of A in cycle c
+  // needs the walk to start 3 + 1 + A - c cycles after the first fill cycle,
+  // at most 3 + 1 + 5 - 3 = 6 (address 5 in cycle 3); the walk's end needs
+  // fill - walk + 1 = 4. Pass 2 reads 2 and 4 in cycles 0 and 1: 3 + 1 + 4 - 1 = 7.
+  EXPECT_EQ(cd.bands[0].read_lag, 6);
+  EXPECT_EQ(cd.bands[1].read_lag, 7);
   // A box with no possible pixel line: one pass over the columns.
   TriangleWork no_line = work;
   no_line.band_lines.clear();
@@ -499,6 +507,15 @@ TEST(UnitBehaviour, TimingLayerTurnsWorkIntoPhasesAndComputeSkipsIt) {
     int64_t pixels = 0;
     for (const int32_t n : unit.work().column_pixels) pixels += n;
     EXPECT_EQ(pixels, r.pixels) << d.name;
+    // A constant-depth band's reads stay in its lines, so early_walk's wait
+    // is at most the whole fill, and its end is never before the fill's.
+    if (phases.kind == TrianglePhases::Kind::Bands) {
+      EXPECT_EQ(static_cast<int64_t>(unit.work().read_tops.size()), r.pixels) << d.name;
+      for (const TrianglePhases::Band& b : phases.bands) {
+        EXPECT_GE(b.read_lag, b.fill - b.walk + 1) << d.name;
+        EXPECT_LE(b.read_lag, b.fill) << d.name;
+      }
+    }
   }
 }
 
@@ -699,6 +716,38 @@ TEST(UnitSchedule, TheFillStageAndASecondBankFillTheNextTriangleDuringThisWalk) 
   EXPECT_EQ(two_banks.last().accept, 33);
 }
 
+TEST(UnitSchedule, AnEarlyWalkStartsWithItsFillAndStallsUntilEachLineIsWritten) {
+  // One band (fill 10, walk 12) whose reads need the walk to start 7 cycles
+  // after the band's first fill cycle, S = 15, one bank. By hand, at depth 0:
+  // accepted in 0, taken in 15, filled 16..25. Without early_walk the walk
+  // starts after the fill: 26..37, record 38. With it the back leaves its
+  // wait in 16 and walks from 17, stalls 16 + 7 - 17 = 6 cycles for its lines
+  // and ends in 17 + 6 + 12 - 1 = 34: record 35.
+  Widths w = schedule_widths(0);
+  ASSERT_EQ(derive(w).setup_cycles, kScheduleSetup);
+  const TrianglePhases one = band_phases({{10, 12, 7}});
+  UnitSchedule late(w);
+  EXPECT_EQ(late.next(one).fill, 10);
+  EXPECT_EQ(late.last().record, 38);
+  w.early_walk = 1;
+  UnitSchedule early(w);
+  const TriangleCycles c = early.next(one);
+  EXPECT_EQ(early.last().record, 35);
+  EXPECT_EQ(c.fill, 1 + 6);  // the cycle that starts the walk, and the stalls
+  EXPECT_EQ(c.walk, 12);
+  EXPECT_EQ(c.total(), 35 + 1);
+  // Two bands in one bank (depth 1): band 1 (fill 8, walk 6, lag 3) is filled
+  // only once band 0's walk has ended in 34: filled 35..42, walked from 36
+  // after 35 + 3 - 36 = 2 stalls, ending in 36 + 2 + 6 - 1 = 43 (after its
+  // last fill cycle): record 44.
+  w.setup_fifo_depth = 1;
+  UnitSchedule two(w);
+  const TriangleCycles t = two.next(band_phases({{10, 12, 7}, {8, 6, 3}}));
+  EXPECT_EQ(two.last().record, 44);
+  EXPECT_EQ(t.fill, 7 + 1 + 2);
+  EXPECT_EQ(t.walk, 12 + 6);
+}
+
 TEST(UnitSchedule, TheFirstTriangleCountsFromItsAcceptAndResetStartsAgain) {
   for (const int depth : {0, 1}) {
     UnitSchedule schedule(schedule_widths(depth));
@@ -733,14 +782,23 @@ TEST(UnitSchedule, ClocksOfAStreamAddUpFromFirstAcceptToLastRecord) {
         case 2: phases.push_back(walk_phases(1 + length(rng))); break;
         default: {
           std::vector<TrianglePhases::Band> b;
-          for (int n = bands(rng); n > 0; --n) b.push_back({5 + length(rng), 1 + length(rng)});
+          for (int n = bands(rng); n > 0; --n) {
+            const int64_t fill = 5 + length(rng), walk = 1 + length(rng);
+            // read_lag as a real band's: from fill - walk + 1 up to fill.
+            const int64_t lag_lo = std::max<int64_t>(0, fill - walk + 1);
+            b.push_back({fill, walk, std::uniform_int_distribution<int64_t>(lag_lo, fill)(rng)});
+          }
           phases.push_back(band_phases(b));
         }
       }
     }
     for (const auto& [depth, banks] : {std::pair{0, 1}, {1, 1}, {1, 2}, {2, 1}, {2, 2}}) {
       UnitSchedule schedule(schedule_widths(depth, banks));
-      int64_t sum = 0;
+      // The same stream with early_walk: never a record later, the same walk.
+      Widths early_widths = schedule_widths(depth, banks);
+      early_widths.early_walk = 1;
+      UnitSchedule early(early_widths);
+      int64_t sum = 0, early_sum = 0;
       for (size_t i = 0; i < phases.size(); ++i) {
         const TrianglePhases& p = phases[i];
         const TriangleCycles c = schedule.next(p);
@@ -757,8 +815,14 @@ TEST(UnitSchedule, ClocksOfAStreamAddUpFromFirstAcceptToLastRecord) {
               << "stream " << stream << " triangle " << i << " depth " << depth << " banks " << banks;
         }
         sum += c.total();
+        const TriangleCycles e = early.next(p);
+        EXPECT_EQ(e.walk, c.walk);
+        EXPECT_LE(early.last().record, schedule.last().record)
+            << "stream " << stream << " triangle " << i << " depth " << depth << " banks " << banks;
+        early_sum += e.total();
       }
       EXPECT_EQ(sum, schedule.last().record + 1) << "stream " << stream << " depth " << depth << " banks " << banks;
+      EXPECT_EQ(early_sum, early.last().record + 1) << "stream " << stream << " depth " << depth;
     }
   }
 }

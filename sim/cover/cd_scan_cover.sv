@@ -14,6 +14,7 @@ module cd_scan_cover (
   input logic [1:0] full_q,
   input logic       walk_bank_q,
   input logic       take,
+  input logic       starve,
   input logic [1:0] kind_q,
   input logic [2:0] segment_log2_q,
   input logic       kim_pipelined_q,
@@ -53,6 +54,11 @@ module cd_scan_cover (
                                       (state_q == 3'd3 || state_q == 3'd4));
   c_band_filled_ahead: cover property (@(posedge clk_i) rst_ni && state_q == 3'd1 && full_q[walk_bank_q]);
   c_take_at_record:   cover property (@(posedge clk_i) rst_ni && take && state_q == 3'd6);
+  // early_walk: the back walks a band whose fill has not ended, and stalls for
+  // a line not yet written (or for the fill's end, to end the band).
+  c_walk_during_own_fill: cover property (@(posedge clk_i) rst_ni && kind_q == 2'd0 && !full_q[walk_bank_q] &&
+                                          (state_q == 3'd3 || state_q == 3'd4));
+  c_walk_starved:     cover property (@(posedge clk_i) rst_ni && starve);
 
   // Back-pressure: a fragment held by the sink (the bench never holds a record),
   // and such a hold freezing a triangle in setup.
@@ -91,6 +97,6 @@ module cd_scan_cover (
 endmodule
 
 bind cd_scan_unit cd_scan_cover u_cover (
-  .clk_i, .rst_ni, .state_q, .front_q, .fill_q, .full_q, .walk_bank_q, .take, .kind_q, .segment_log2_q, .kim_pipelined_q, .density_log2_q,
+  .clk_i, .rst_ni, .state_q, .front_q, .fill_q, .full_q, .walk_bank_q, .take, .starve, .kind_q, .segment_log2_q, .kim_pipelined_q, .density_log2_q,
   .correction_q, .frag_valid_o, .frag_ready_i, .rec_valid_o, .rec_ready_i, .rec_flags_o,
   .obs_setup_valid_o, .obs_setup_bits_o);
