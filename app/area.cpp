@@ -397,23 +397,26 @@ nlohmann::json area_summary_json(const AreaReport& r) {
     flops += b.flops;
   }
   return {{"logic_area_um2", r.logic_area_um2}, {"nand2_eq", nand2_eq}, {"flops", flops},
-          {"sram_bits", r.sram_bits},           {"sram_area_um2", r.sram_area_um2},
-          {"flop_table_area_um2", r.flop_table_area_um2}, {"total_area_um2", r.total_area_um2}};
+          {"sram_bits", r.sram_bits},           {"sram_two_port", r.sram_two_port},
+          {"sram_area_um2", r.sram_area_um2},   {"flop_table_area_um2", r.flop_table_area_um2},
+          {"total_area_um2", r.total_area_um2}};
 }
 
 std::string area_table(const std::vector<AreaReport>& reports, const AreaOptions& options) {
   std::string out = fmt::format(
-      "area: {} onto {} (NAND2X1 = {} um^2), SRAM at {} um^2 per bit / {} efficiency (docs/area.md)\n",
+      "area: {} onto {} (NAND2X1 = {} um^2), SRAM at {} um^2 per bit / {} efficiency, x {:.3g} where "
+      "two-port (2p: early_walk) (docs/area.md)\n",
       options.estimate ? "the component area model, calibrated by Yosys," : "Yosys",
       fs::path(options.liberty).filename().string(), nand2_area_um2(options), options.sram_cell_um2,
-      options.sram_efficiency);
+      options.sram_efficiency, options.sram_two_port_factor);
   out += fmt::format("{:<17} {:>13} {:>10} {:>8} {:>10} {:>12} {:>13}\n", "design", "logic um^2",
                      "NAND2-eq", "flops", "SRAM bits", "SRAM um^2", "total um^2");
   for (const AreaReport& r : reports) {
     const nlohmann::json a = area_summary_json(r);
     out += fmt::format("{:<17} {:>13.0f} {:>10.0f} {:>8} {:>10} {:>12.0f} {:>13.0f}\n", r.design,
                        r.logic_area_um2, a.at("nand2_eq").get<double>(), a.at("flops").get<int64_t>(),
-                       r.sram_bits, r.sram_area_um2, r.total_area_um2);
+                       fmt::format("{}{}", r.sram_bits, r.sram_two_port ? " 2p" : ""), r.sram_area_um2,
+                       r.total_area_um2);
   }
   return out;
 }

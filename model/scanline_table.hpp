@@ -1,6 +1,7 @@
 // Scanline table SRAM: one entry (T.u, T.v, S.u, S.v) per constant-depth line.
 // Split into an even and an odd bank so that a line and its correction
-// neighbour (k and k +- 1) are read in the same cycle from single-port banks.
+// neighbour (k and k +- 1) are read in the same cycle from single-port banks
+// (two-port with early_walk: docs/area.md).
 #pragma once
 
 #include <cstdint>

@@ -29,7 +29,8 @@
 // the whole unit for the cycle. The record counts the clocks from the cycle
 // after the previous record was delivered (the first triangle: from its accept)
 // to its own delivery, held cycles included: the model's schedule, plus the
-// stalls.
+// back-pressure stalls. (With early_walk the back also starves for lines not
+// yet written; the model's schedule counts those.)
 `include "cd_widths.svh"
 `default_nettype none
 
@@ -451,8 +452,8 @@ module cd_scan_unit #(
 
   if (HasTable) begin : gen_table
     // One scanline_table per bank: the fill writes one while the walker reads
-    // the other. Read data comes the cycle after the address, from the bank
-    // read then.
+    // the other (with EarlyWalk also the one being written, behind the fill).
+    // Read data comes the cycle after the address, from the bank read then.
     logic [WordBits-1:0] own_entry, neighbour_entry;
     logic [TableBanks*WordBits-1:0] own_bank, neighbour_bank;
 
@@ -1097,7 +1098,8 @@ module cd_scan_unit #(
     unique case (state_q)
       StIdle: ;
       StFillWait: if (band_avail) begin
-        // The band's lines are in the table (or their fill ends this cycle).
+        // The band's lines are in the table (or their fill ends this cycle;
+        // EarlyWalk: starts, the reads waiting for their lines).
         state_d = StColumn;
         offset_d = '0;
         column_init = 1'b1;

@@ -1,11 +1,12 @@
 // Scanline table SRAM: one word (T.u, T.v, S.u, S.v and two flags) per
 // constant-depth line of the current band, addressed by line - band base.
 // Split into an even and an odd bank by address, so that a pixel's line and
-// its correction neighbour (address +- 1) come from different single-port
-// banks in the same cycle. Reads are synchronous: data appears the cycle after
-// the address. Writes (the fill) and reads (the walk) share a cycle only with
-// early_walk, and then never an address: a read goes only to lines written in
-// earlier cycles. Each bank is then a two-port SRAM (one read, one write port).
+// its correction neighbour (address +- 1) come from different banks in the
+// same cycle. Reads are synchronous: data appears the cycle after the address.
+// Writes (the fill) and reads (the walk) share a cycle only with early_walk,
+// and then never an address: a read goes only to lines written in earlier
+// cycles. Each bank is single-port without early_walk, two-port (one read,
+// one write port) with it.
 `include "cd_widths.svh"
 `default_nettype none
 

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # RTL coverage over the CI coverage set (docs/coverage.md): narrow widths on
 # random triangles of the nine fast designs and on the hard cases with all
-# eleven designs mixed, with back-pressure, each run adding its data to one
-# folder.
+# eleven designs mixed, and with early_walk on the constant-depth designs,
+# with back-pressure, each run adding its data to one folder.
 # Fails if the line coverage of rtl/ is below MIN_LINES percent, if a design's
 # or an FSM state's cover point is never hit, or if the lcov and HTML reports
 # are missing; and checks that `cdsim coverage` refuses a folder without data.
@@ -22,14 +22,17 @@ run() { "$cdsim" regress --backpressure 0.3 --rtl-cache "$cache" --coverage "$wo
         echo "regress $*:"; grep -E "mismatches|^  (line|branch|toggle|user) " "$work/run.log"; }
 run --widths narrow --random $((300 * scale)) --seed 3 --design $fast
 run --widths narrow --scene hard:all --design mix
-runs=2
+# early_walk (a coverage build of its own): bands walked while they are filled.
+run --widths narrow --set early_walk=1 --random $((300 * scale)) --seed 7 \
+    --design cd-none,cd-linear,cd-dense2,cd-dense4,cd-dense2-linear
+runs=3
 if ((scale > 1)); then
   # The Kim designs cost tens of thousands of cycles a random triangle: fewer of them.
   run --widths narrow --random $((2 * scale)) --seed 4 --design kim-iter,kim-pipe
   run --widths default --random $((30 * scale)) --seed 5 --design $fast
   run --widths wide --random $((10 * scale)) --seed 6 --design $fast
   run --widths narrow --scene default --design mix
-  runs=6
+  runs=7
 fi
 "$cdsim" coverage "$work/cov" --min-lines "$min_lines"
 
