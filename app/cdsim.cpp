@@ -169,7 +169,8 @@ int dispatch(Cli& cli) {
     return 0;
   }
   if (*cli.designs_command) {
-    for (const Design& d : all_designs()) fmt::print("{:<17} {}\n", d.name, d.summary);
+    for (const Design& d : all_designs())
+      fmt::print("{:<17} {}{}\n", d.name, d.summary, has_rtl(d) ? "" : " [model only: no RTL yet]");
     return 0;
   }
   return run_command(cli.run, cli.json_path, cli.show_worst, cli.run_area, cli.dump_path);

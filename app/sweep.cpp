@@ -61,13 +61,17 @@ std::vector<Config> product_configs(const std::vector<Design>& designs,
 }
 
 // The default sweep: for each design, one-dimensional sweeps of the widths
-// that decide its accuracy, around the defaults (251 configurations).
+// that decide its accuracy, around the defaults (298 configurations; 251 before cd-persp).
 std::vector<Config> default_configs() {
   const std::vector<SweepAxis> constant_depth = {
       {"g_frac", {6, 8, 10, 12, 14, 16, 18, 20}},
       {"s_frac", {8, 10, 12, 14, 16, 18, 20, 22, 24}},
       {"out_frac", {2, 4, 6, 8, 10, 12}}};
   const std::vector<SweepAxis> correction = {{"d_frac", {2, 4, 6, 8, 10, 12}}};
+  const std::vector<SweepAxis> persp = {{"d_frac", {14, 16}},
+                                        {"persp_table_log2", {0, 1, 2, 3, 5, 6}},
+                                        {"eps_frac", {8, 10, 12, 14, 18}},
+                                        {"persp_frac", {8, 10, 12, 14, 18}}};
   const std::vector<SweepAxis> divide = {{"recip_bits", {8, 10, 12, 14, 16, 18, 20, 22, 24}},
                                          {"out_frac", {2, 4, 6, 8, 10, 12}}};
   // Kim-style: the full grid of fraction bits and unrolling, so that its
@@ -83,6 +87,7 @@ std::vector<Config> default_configs() {
       case Design::Kind::ConstantDepth:
         axes = constant_depth;
         if (d.correction) axes.insert(axes.end(), correction.begin(), correction.end());
+        if (d.persp) axes.insert(axes.end(), persp.begin(), persp.end());
         break;
       case Design::Kind::Divide: axes = divide; break;
       case Design::Kind::Kim: {

@@ -6,6 +6,7 @@
 // rtl/correction_adder.sv.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 
 #include "column_walker.hpp"
@@ -35,25 +36,79 @@ inline CorrectedValue linear_correction(const LineValue& own, const LineValue& n
   return out;
 }
 
+// cd-persp: the perspective-correct weight t' = |d| (1 + e) / (1 + |d| e)
+// toward the neighbour k' = k + direction, where e = q_k' / q_k - 1 =
+// direction eps_k (the own line's table entry). Without a division:
+//   t' = |d| + c e r,  c = |d| (1 - |d|) (per column),  r ~ 1 / (1 + x),  x = |d| e,
+// r from a table of 1/m, m in [1, 2), K = 2^persp_table_log2 segments, linear
+// between entries (persp_reciprocal). x, r and c e carry persp_frac fraction
+// bits, each rounded to nearest; t' is rounded to d_frac bits and clamped to
+// [0, 1], where the true t' lies. docs/designs.md gives the bounds. Twin of
+// the RTL's persp stage (not built yet).
+
+// Entry i of the table: 1 / (1 + i / K) at persp_frac bits, i = 0 .. K.
+inline int64_t persp_table_entry(int64_t i, const Widths& w) {
+  const int64_t k = int64_t{1} << w.persp_table_log2;
+  // round(2^pf K / (K + i)), ties up.
+  return static_cast<int64_t>(((fx::Wide{k} << (w.persp_frac + 1)) / (k + i) + 1) / 2);
+}
+
+// 1 / (1 + x) for x in [-1/2, 1), both at persp_frac bits: 1 + x is brought
+// into m in [1, 2) (doubled when below 1), 1/m taken between two table entries.
+inline int64_t persp_reciprocal(int64_t x, const Widths& w) {
+  const int pf = w.persp_frac, lg = w.persp_table_log2;
+  const int64_t y = (int64_t{1} << pf) + x;
+  const bool doubled = y < (int64_t{1} << pf);
+  const int64_t f = (doubled ? 2 * y : y) - (int64_t{1} << pf);  // m - 1, in [0, 2^pf)
+  const int fine = pf - lg;                                        // bits between entries
+  const int64_t i = f >> fine, frac = f & ((int64_t{1} << fine) - 1);
+  const int64_t lo = persp_table_entry(i, w), hi = persp_table_entry(i + 1, w);
+  const int64_t r = lo + static_cast<int64_t>(fx::shift_round(fx::Wide{hi - lo} * frac, fine, fx::Round::Nearest));
+  return doubled ? 2 * r : r;
+}
+
+inline int64_t persp_weight(int64_t weight, int direction, int64_t eps, const Widths& w) {
+  using fx::Round;
+  using fx::Wide;
+  const int pf = w.persp_frac, df = w.d_frac;
+  const Wide e = direction > 0 ? eps : -eps;                // eps_frac bits, |e| < 2
+  const Wide c = Wide{weight} * ((Wide{1} << df) - weight);  // 2 d_frac bits
+  // |d| <= 1/2 and |e| < 2, so x < 1; x < -1/2 only by rounding (e = -1 is a
+  // neighbour at q = 0, which is never used).
+  const Wide x = std::clamp<Wide>(fx::shift_round(Wide{weight} * e, df + w.eps_frac - pf, Round::Nearest),
+                                  -(Wide{1} << (pf - 1)), (Wide{1} << pf) - 1);
+  const Wide r = persp_reciprocal(static_cast<int64_t>(x), w);
+  const Wide ce = fx::shift_round(c * e, 2 * df + w.eps_frac - pf, Round::Nearest);
+  const Wide t = Wide{weight} + fx::shift_round(ce * r, 2 * pf - df, Round::Nearest);
+  return static_cast<int64_t>(std::clamp<Wide>(t, 0, Wide{1} << df));
+}
+
 struct CorrectedFragment {
   CorrectedValue value;
   uint32_t flags = 0;  // the own entry's flags, neighbour_dropped, output_saturated
 };
 
 // One pixel: its own entry and, when correct (a design with correction and a
-// pixel off its line), the neighbour entry.
+// pixel off its line), the neighbour entry, which lies toward direction. With
+// persp the weight is the perspective-correct one (persp_weight).
 inline CorrectedFragment correction_adder(const TableEntry& own_entry,
                                           const TableEntry* neighbour_entry, int64_t offset,
-                                          int64_t weight, const Widths& w) {
+                                          int64_t weight, int direction, bool persp,
+                                          const Widths& w) {
   CorrectedFragment out;
   out.flags = own_entry.flags;
   const LineValue own = line_value(own_entry, offset, w);
   LineValue other = own;
   if (neighbour_entry) {
-    if (neighbour_entry->flags == 0)
+    if (neighbour_entry->flags == 0) {
       other = line_value(*neighbour_entry, offset, w);
-    else
+      if (persp) {
+        weight = persp_weight(weight, direction, own_entry.eps, w);
+        if (own_entry.eps_saturated) out.flags |= flag::kTableSaturated;
+      }
+    } else {
       out.flags |= flag::kNeighbourDropped;
+    }
   }
   out.value = linear_correction(own, other, weight, w);
   if (out.value.saturated) out.flags |= flag::kOutputSaturated;

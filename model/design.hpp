@@ -17,6 +17,9 @@ struct Design {
   bool pipelined = false;   // Kim: fraction by a pipelined divider (else iterative)
   int subdivision = 0;      // Affine: exact divide every this many pixels (0: plain affine)
   std::string summary;
+  // Constant depth with correction: the perspective-correct weight from the
+  // line's q ratio (cd-persp, docs/designs.md) instead of the linear |d|.
+  bool persp = false;
 };
 
 const std::vector<Design>& all_designs();
@@ -37,6 +40,7 @@ struct DesignSelect {
   bool kim_pipelined = false;
   int density_log2 = 0;  // constant-depth lines per pixel m = 2^density_log2
   bool correction = false;
+  bool persp = false;
 };
 inline int log2_ceil(int value) {
   int bits = 0;
@@ -50,6 +54,7 @@ inline DesignSelect design_select(const Design& d) {
   s.kim_pipelined = d.kind == Design::Kind::Kim && d.pipelined;
   s.density_log2 = log2_ceil(d.density);
   s.correction = d.correction;
+  s.persp = d.persp;
   return s;
 }
 

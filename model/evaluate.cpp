@@ -38,7 +38,7 @@ DesignResult evaluate(const PreparedScene& prepared, const Design& design, const
   result.triangles = static_cast<int64_t>(prepared.unit.size());
   if (design.kind == Design::Kind::ConstantDepth) {
     result.table_depth = widths.table_depth * design.density;
-    result.table_word_bits = widths.table_word_bits();
+    result.table_word_bits = widths.table_word_bits(design.persp);
     result.table_bits = int64_t{result.table_depth} * widths.table_banks * result.table_word_bits;
   }
   std::vector<float> errors;

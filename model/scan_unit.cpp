@@ -111,7 +111,7 @@ TriangleRecord ScanUnit::run_constant_depth(const Setup& s, std::vector<Fragment
         work_.read_tops.push_back(static_cast<int32_t>(line - (band_lo - guard) + (correct && c.direction > 0 ? 1 : 0)));
         const CorrectedFragment out =
             correction_adder(table_.read(line), correct ? &table_.read(line + c.direction) : nullptr,
-                             c.offset, c.weight, widths_);
+                             c.offset, c.weight, c.direction, s.persp, widths_);
         fragments->push_back(make_fragment(s, c, minor, out.value));
         fragments->back().flags = out.flags;
         record.flags |= out.flags;

@@ -66,6 +66,7 @@ Setup setup_engine(const UnitTriangle& t, const Design& design, const Widths& w,
   Setup s;
   s.density = design.density;
   s.correction = design.correction;
+  s.persp = design.persp;
   s.edges = make_edges(t, w.subpixel_bits);
   s.box = bounding_box(t, w.subpixel_bits, viewport_width, viewport_height);
   if (s.edges.det == 0 || s.box.empty()) return s;
@@ -251,6 +252,17 @@ TableEntry fill_line(const Setup& s, int64_t line, const Widths& w) {
   e.s_u = to(s.step_u, w.s_format());
   e.s_v = to(s.step_v, w.s_format());
   e.flags = (saturated ? flag::kTableSaturated : 0) | (r.out_of_range ? flag::kDepthRange : 0);
+  if (s.persp) {
+    // eps = q_line / q_k: the plane's step per line times the same reciprocal.
+    const fx::Format eps_format{2, w.eps_frac, true};
+    e.eps = static_cast<int64_t>(fx::narrow(s.q.per_line * r.mantissa, w.recip_bits + r.exponent,
+                                            eps_format, fx::Round::Nearest, fx::Overflow::Saturate,
+                                            &e.eps_saturated));
+    if (e.eps == eps_format.min_raw()) {  // keep -eps in the format
+      e.eps += 1;
+      e.eps_saturated = true;
+    }
+  }
   return e;
 }
 

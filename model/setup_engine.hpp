@@ -44,6 +44,7 @@ struct Setup {
   int64_t g = 0;              // slope, s2.g_frac
   int density = 1;            // lines per pixel
   bool correction = false;
+  bool persp = false;         // cd-persp: the fill also computes eps per line
   PixelBox box;               // pixels to walk, clipped to the viewport
   int64_t major_lo = 0, major_count = 0;  // walked columns (x-major) or rows
   int64_t minor_lo = 0, minor_hi = -1;    // the other axis of the box
@@ -76,6 +77,12 @@ struct TableEntry {
   // flagged entry raises its flags on every fragment that uses it, and is never
   // used as a correction neighbour.
   uint32_t flags = 0;
+  // cd-persp: eps = q_line w_k, the relative step of q from line k to k + 1
+  // (s2.eps_frac, symmetric: -eps is representable). Its saturation is kept
+  // apart from flags, since only a pixel on this line uses it, never its
+  // neighbours; such a pixel raises kTableSaturated.
+  int64_t eps = 0;
+  bool eps_saturated = false;
 };
 
 // Computes table entry k (line k relative to the reference pixel).

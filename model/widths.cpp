@@ -75,6 +75,11 @@ void validate(const Widths& w) {
         "+ out_frac beyond that); "
         "the limit is 63",
         acc_bits));
+  if (w.persp_table_log2 > w.persp_frac)
+    throw std::invalid_argument(fmt::format(
+        "persp_table_log2={} needs persp_frac >= it (persp_frac={}): the table's index is the top "
+        "bits of the fraction",
+        w.persp_table_log2, w.persp_frac));
   if (w.out_int + w.out_frac > 48)
     throw std::invalid_argument("out_int + out_frac must not exceed 48 bits");
 }

@@ -16,8 +16,10 @@ struct Widths {
   fx::Format t_format() const { return {t_int, t_frac, true}; }
   fx::Format s_format() const { return {s_int, s_frac, true}; }
   fx::Format out_format() const { return {out_int, out_frac, true}; }
-  // Table word: T.u, T.v, S.u, S.v.
-  int table_word_bits() const { return 2 * (t_int + t_frac) + 2 * (s_int + s_frac); }
+  // Table word: T.u, T.v, S.u, S.v, and for cd-persp eps (s2.eps_frac).
+  int table_word_bits(bool persp = false) const {
+    return 2 * (t_int + t_frac) + 2 * (s_int + s_frac) + (persp ? 2 + eps_frac : 0);
+  }
 };
 
 struct ParamInfo {

@@ -11,7 +11,7 @@ cdsim=$1 work=$2 data=$(dirname "$0")/data
 out=$work/out
 rm -rf "$work" && mkdir -p "$work"
 small=(sweep --scene "$data/small_scene.tri" --design cd-linear --set g_frac=8:12:2 --out "$out" --jobs 1)
-# Long enough to be running when the second starts: 11 designs x 29 values on the default scene.
+# Long enough to be running when the second starts: 12 designs x 29 values on the default scene.
 long=(sweep --scene default --set g_frac=2:30 --out "$out" --jobs 1)
 
 start_long() {

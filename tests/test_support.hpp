@@ -35,6 +35,8 @@ inline Widths wide_widths() {
   w.out_int = 20;
   w.out_frac = 16;
   w.table_depth = 8192;
+  w.eps_frac = 30;
+  w.persp_frac = 30;
   return w;
 }
 
@@ -126,6 +128,16 @@ class IdealConstantDepth {
     return {p[1] / q_line, p[2] / q_line};
   }
 
+  long double q_on_line(int64_t line) const {
+    const long double major0 = static_cast<long double>(setup_.major_lo) + 0.5L;
+    const long double minor0 = static_cast<long double>(setup_.minor_lo) + 0.5L;
+    const long double minor = minor0 + static_cast<long double>(line) / setup_.density;
+    return (setup_.x_major ? planes(major0, minor) : planes(minor, major0))[0];
+  }
+
+  // cd-persp: the exact 1 / (1 + x) instead of the table's.
+  void set_persp_exact(bool exact) { exact_persp_ = exact; }
+
   IdealValue at_pixel(int64_t x, int64_t y) const {
     const int64_t major = setup_.x_major ? x : y, minor = setup_.x_major ? y : x;
     const int64_t offset = major - setup_.major_lo;
@@ -138,7 +150,24 @@ class IdealConstantDepth {
     const IdealValue own = on_line(line, offset);
     if (!setup_.correction || t == 0) return own;
     const IdealValue other = on_line(line + (t > 0 ? 1 : -1), offset);
-    const long double a = std::fabs(t);
+    long double a = std::fabs(t);
+    if (setup_.persp) {
+      // cd-persp's weight |t| + |t|(1 - |t|) e r, e = q_k' / q_k - 1, with r
+      // the table's chord interpolation of 1 / (1 + |t| e), or (exact_persp_)
+      // 1 / (1 + |t| e) itself, which makes the weight the projective one.
+      const long double e = q_on_line(line + (t > 0 ? 1 : -1)) / q_on_line(line) - 1;
+      const long double one_plus_x = 1 + a * e;
+      long double r = 1 / one_plus_x;
+      if (!exact_persp_) {
+        const long double k = std::ldexp(1.0L, w_.persp_table_log2);
+        const bool doubled = one_plus_x < 1;
+        const long double m = doubled ? 2 * one_plus_x : one_plus_x;
+        const long double i = std::floor((m - 1) * k), frac = (m - 1) * k - i;
+        const long double lo = 1 / (1 + i / k), hi = 1 / (1 + (i + 1) / k);
+        r = (lo + (hi - lo) * frac) * (doubled ? 2 : 1);
+      }
+      a = a + a * (1 - a) * e * r;
+    }
     return {own.u + a * (other.u - own.u), own.v + a * (other.v - own.v),
             std::max(std::fabs(other.u - own.u), std::fabs(other.v - own.v))};
   }
@@ -146,6 +175,7 @@ class IdealConstantDepth {
  private:
   Setup setup_;
   Widths w_;
+  bool exact_persp_ = false;
   std::array<long double, 3> q_{}, uq_{}, vq_{}, x_{}, y_{};
   long double det_ = 0;
 };
