@@ -11,16 +11,6 @@ namespace {
 
 constexpr int kWidth = 160, kHeight = 120;
 
-// The chord of 1/m between the table's points, 1 / (1 + x), in long double.
-long double chord_reciprocal(long double x, int table_log2) {
-  const long double k = std::ldexp(1.0L, table_log2), y = 1 + x;
-  const bool doubled = y < 1;
-  const long double m = doubled ? 2 * y : y;
-  const long double i = std::floor((m - 1) * k), frac = (m - 1) * k - i;
-  const long double lo = 1 / (1 + i / k), hi = 1 / (1 + (i + 1) / k);
-  return (lo + (hi - lo) * frac) * (doubled ? 2 : 1);
-}
-
 TEST(PerspTable, EntriesAreTheReciprocalsRoundedToNearest) {
   Widths w;
   for (int pf : {8, 16, 30}) {
@@ -49,7 +39,7 @@ TEST(PerspTable, ReciprocalIsTheChordWithinItsBound) {
       const long double xr = std::ldexp(static_cast<long double>(x), -w.persp_frac);
       const long double got = std::ldexp(static_cast<long double>(persp_reciprocal(x, w)), -w.persp_frac);
       // The table's roundings: half an LSB per entry and the interpolation's, doubled.
-      ASSERT_LE(std::fabs(got - chord_reciprocal(xr, lg)), 4 * lsb) << "K " << k << " x " << double(xr);
+      ASSERT_LE(std::fabs(got - testing::chord_reciprocal(xr, lg)), 4 * lsb) << "K " << k << " x " << double(xr);
       worst = std::max(worst, std::fabs(got - 1 / (1 + xr)));
     }
     EXPECT_LE(worst, 1 / (2 * k * k) + 4 * lsb) << "K " << k;
@@ -76,7 +66,7 @@ TEST(PerspWeight, EqualsTheAlgorithmInLongDoubleToHalfAnLsb) {
           const long double a = std::ldexp(static_cast<long double>(weight), -w.d_frac);
           const long double e = direction * std::ldexp(static_cast<long double>(eps), -w.eps_frac);
           if (e <= -1) continue;
-          const long double ideal = std::clamp(a + a * (1 - a) * e * chord_reciprocal(a * e, lg), 0.0L, 1.0L);
+          const long double ideal = std::clamp(a + a * (1 - a) * e * testing::chord_reciprocal(a * e, lg), 0.0L, 1.0L);
           const long double got = std::ldexp(static_cast<long double>(persp_weight(weight, direction, eps, w)), -w.d_frac);
           // Rounding to d_frac bits, and x, r, c e at 2^-30 (r's slope in x is
           // at most 4, c e at most 1/2).

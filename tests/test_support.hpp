@@ -69,6 +69,18 @@ inline std::vector<std::pair<int64_t, int64_t>> brute_force_pixels(const UnitTri
   return out;
 }
 
+// cd-persp's 1 / (1 + x) as its table gives it, in long double: 1 + x doubled
+// into m in [1, 2) when below 1, and the chord of 1/m between the points
+// 1 / (1 + i / K), K = 2^table_log2, halved back.
+inline long double chord_reciprocal(long double x, int table_log2) {
+  const long double k = std::ldexp(1.0L, table_log2), y = 1 + x;
+  const bool doubled = y < 1;
+  const long double m = doubled ? 2 * y : y;
+  const long double i = std::floor((m - 1) * k), frac = (m - 1) * k - i;
+  const long double lo = 1 / (1 + i / k), hi = 1 / (1 + (i + 1) / k);
+  return (lo + (hi - lo) * frac) * (doubled ? 2 : 1);
+}
+
 // The ideal value of a constant-depth design at one pixel, in long double:
 // the design's lines (slope g taken from the setup, as a parameter of the
 // algorithm) evaluated exactly from the unit's own inputs, with no rounding.
@@ -156,16 +168,7 @@ class IdealConstantDepth {
       // the table's chord interpolation of 1 / (1 + |t| e), or (exact_persp_)
       // 1 / (1 + |t| e) itself, which makes the weight the projective one.
       const long double e = q_on_line(line + (t > 0 ? 1 : -1)) / q_on_line(line) - 1;
-      const long double one_plus_x = 1 + a * e;
-      long double r = 1 / one_plus_x;
-      if (!exact_persp_) {
-        const long double k = std::ldexp(1.0L, w_.persp_table_log2);
-        const bool doubled = one_plus_x < 1;
-        const long double m = doubled ? 2 * one_plus_x : one_plus_x;
-        const long double i = std::floor((m - 1) * k), frac = (m - 1) * k - i;
-        const long double lo = 1 / (1 + i / k), hi = 1 / (1 + (i + 1) / k);
-        r = (lo + (hi - lo) * frac) * (doubled ? 2 : 1);
-      }
+      const long double r = exact_persp_ ? 1 / (1 + a * e) : chord_reciprocal(a * e, w_.persp_table_log2);
       a = a + a * (1 - a) * e * r;
     }
     return {own.u + a * (other.u - own.u), own.v + a * (other.v - own.v),
