@@ -193,7 +193,7 @@ UnitConfig prepare_unit(const Design& design, const Widths& widths, const AreaOp
   c.dir = cache / fmt::format("{:016x}", hash);
   fs::create_directories(c.dir);
   c.sram_depth = c.has_table ? (int64_t{widths.table_depth} << log2_ceil(design.density)) * widths.table_banks : 0;
-  c.word_bits = derived.word_bits;
+  c.word_bits = unit_word_bits(derived, design.persp);
   c.flop_lines = std::min<int64_t>(c.sram_depth, 64);  // 0: no table
 
   std::string unit_sources;
@@ -491,15 +491,16 @@ int run_area_command(const AreaOptions& options) {
   if (r.sram_bits == 0) {
     fmt::print("\nno scanline table\ntotal (logic): {:.0f} um^2\n", r.total_area_um2);
   } else {
+    const int word_bits = unit_word_bits(derive(r.widths), find_design(r.design).persp);
     fmt::print("\nscanline table: {} bits ({} lines x {} bits, flags included)\n", r.sram_bits,
-               r.sram_bits / derive(r.widths).word_bits, derive(r.widths).word_bits);
+               r.sram_bits / word_bits, word_bits);
     fmt::print("  as SRAM:        {:>14.0f} um^2 ({} um^2 bit cell{} / {} array efficiency)\n",
                r.sram_area_um2, options.sram_cell_um2,
                r.sram_two_port ? fmt::format(" x {:.3g} two-port (early_walk)", options.sram_two_port_factor) : "",
                options.sram_efficiency);
     fmt::print("  as flip-flops:  {:>14.0f} um^2 (synthesised at {} lines{})\n", r.flop_table_area_um2,
                r.flop_table_lines_synthesised,
-               r.flop_table_lines_synthesised * derive(r.widths).word_bits == r.sram_bits
+               r.flop_table_lines_synthesised * word_bits == r.sram_bits
                    ? ""
                    : ", scaled linearly to the full depth");
     fmt::print("total (logic + SRAM table): {:.0f} um^2\n", r.total_area_um2);

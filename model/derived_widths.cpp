@@ -75,6 +75,8 @@ DerivedWidths derive(const Widths& w) {
   d.t_bits = w.t_int + w.t_frac;
   d.s_bits = w.s_int + w.s_frac;
   d.word_bits = 2 * d.t_bits + 2 * d.s_bits + 2;
+  d.eps_bits = 2 + w.eps_frac;
+  d.persp_word_bits = d.word_bits + d.eps_bits + 1;
   d.line_value_frac = std::max(w.t_frac, w.s_frac);
   d.line_value_bits = std::max(d.t_bits + d.line_value_frac - w.t_frac,
                                d.s_bits + d.line_value_frac - w.s_frac + d.pixel_bits) +
@@ -138,6 +140,9 @@ std::string rtl_header(const Widths& w, const std::string& config) {
   out += fmt::format("`define CD_WORD_SV_LSB {}\n", 2 * d.t_bits + d.s_bits);
   out += fmt::format("`define CD_WORD_SATURATED_BIT {}\n", 2 * d.t_bits + 2 * d.s_bits);
   out += fmt::format("`define CD_WORD_DEPTH_RANGE_BIT {}\n", 2 * d.t_bits + 2 * d.s_bits + 1);
+  out += "// cd-persp's word goes on: eps, eps_saturated (persp_word_bits in all)\n";
+  out += fmt::format("`define CD_WORD_EPS_LSB {}\n", d.word_bits);
+  out += fmt::format("`define CD_WORD_EPS_SATURATED_BIT {}\n", d.word_bits + d.eps_bits);
   out += "`endif\n";
   return out;
 }

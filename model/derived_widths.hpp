@@ -28,6 +28,10 @@ struct DerivedWidths {
 
 DerivedWidths derive(const Widths& widths);
 
+// The table word the unit stores for a design, flags included: cd-persp's
+// holds eps and its saturation bit as well.
+inline int unit_word_bits(const DerivedWidths& d, bool persp) { return persp ? d.persp_word_bits : d.word_bits; }
+
 struct DerivedInfo {
   const char* name;
   const char* meaning;

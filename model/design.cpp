@@ -30,7 +30,6 @@ const std::vector<Design>& all_designs() {
 }
 
 bool has_rtl(const Design& design) {
-  if (design.persp) return false;  // not in rtl/ yet (issue 13)
   switch (design.kind) {
     case Design::Kind::ConstantDepth:
     case Design::Kind::Divide:
@@ -50,13 +49,14 @@ std::string rtl_design_names() {
 std::vector<UnitParameter> unit_parameters(const std::vector<const Design*>& designs) {
   int density_log2 = 0, segment_log2 = 0;
   bool correction = false, table = false, divide = false, affine = false, affine_sub = false;
-  bool kim_iter = false, kim_pipe = false;
+  bool kim_iter = false, kim_pipe = false, persp = false;
   for (const Design* d : designs) {
     switch (d->kind) {
       case Design::Kind::ConstantDepth:
         table = true;
         density_log2 = std::max(density_log2, log2_ceil(d->density));
         correction = correction || d->correction;
+        persp = persp || d->persp;
         break;
       case Design::Kind::Divide: divide = true; break;
       case Design::Kind::Kim: (d->pipelined ? kim_pipe : kim_iter) = true; break;
@@ -71,7 +71,7 @@ std::vector<UnitParameter> unit_parameters(const std::vector<const Design*>& des
     }
   }
   if (!affine_sub) segment_log2 = 4;  // the unit's default; nothing uses it
-  return {{"MaxDensityLog2", density_log2}, {"HasCorrection", correction},
+  return {{"MaxDensityLog2", density_log2}, {"HasCorrection", correction}, {"HasPersp", persp},
           {"HasTable", table},              {"HasDivide", divide},
           {"HasAffine", affine},            {"HasAffineSub", affine_sub},
           {"MaxSegmentLog2", segment_log2}, {"HasKimIter", kim_iter},

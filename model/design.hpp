@@ -33,7 +33,7 @@ const Design& find_design(const std::string& name);
 std::vector<Design> parse_design_list(const std::string& list);
 
 // The unit's design inputs for one triangle (rtl/cd_scan_unit.sv: kind_i,
-// segment_log2_i, kim_pipelined_i, density_log2_i, correction_i).
+// segment_log2_i, kim_pipelined_i, density_log2_i, correction_i, persp_i).
 struct DesignSelect {
   int kind = 0;          // Design::Kind
   int segment_log2 = 0;  // affine-subN: log2 N; plain affine and the others: 0

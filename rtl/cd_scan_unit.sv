@@ -5,7 +5,7 @@
 // the per-pixel designs (docs/designs.md), each present by parameter, so that
 // a unit synthesised for one design holds only that design's hardware. The
 // design is chosen per triangle by kind_i (when more than one is present),
-// density_log2_i and correction_i.
+// density_log2_i, correction_i and persp_i.
 //
 // Front, fill and back (docs/rtl.md, "Front and back"): the front accepts a
 // triangle and runs the setup engine (SetupCycles); the fill fills the table
@@ -41,6 +41,9 @@ module cd_scan_unit #(
   // 0 builds the unit without the linear correction (cd-none, cd-dense2,
   // cd-dense4): no neighbour read, no correction multiplies, no guard lines.
   parameter bit HasCorrection = 1'b1,
+  // cd-persp's perspective-correct weight (needs HasCorrection): eps in the
+  // table word, its product in the fill, the weight's ROM and multiplies.
+  parameter bit HasPersp = 1'b1,
   // The datapaths present: the constant-depth designs (table, fill,
   // correction adder) and divide (plane walker, pixel reciprocal pipeline).
   parameter bit HasTable = 1'b1,
@@ -92,6 +95,7 @@ module cd_scan_unit #(
   input  logic        kim_pipelined_i,    // Kim: 1 kim-pipe, 0 kim-iter
   input  logic [1:0]  density_log2_i,     // m = 1, 2, 4
   input  logic        correction_i,
+  input  logic        persp_i,            // cd-persp: the perspective-correct weight
 
   // Fragment: pixel x, y; u, v sign-extended from OutInt.OutFrac; flags.
   output logic        frag_valid_o,
@@ -125,7 +129,8 @@ module cd_scan_unit #(
   output logic [63:0] obs_write_tv_o,
   output logic [63:0] obs_write_su_o,
   output logic [63:0] obs_write_sv_o,
-  output logic [1:0]  obs_write_flags_o   // {depth_range, table_saturated}
+  output logic [31:0] obs_write_eps_o,    // cd-persp's eps, sign-extended (0 without HasPersp)
+  output logic [2:0]  obs_write_flags_o   // {eps_saturated, depth_range, table_saturated}
 );
 
   localparam int TableDepth   = `CD_TABLE_DEPTH;
@@ -135,7 +140,8 @@ module cd_scan_unit #(
   localparam int LineBits     = `CD_LINE_BITS;
   localparam int GBits        = `CD_G_BITS;
   localparam int WeightBits   = `CD_WEIGHT_BITS;
-  localparam int WordBits     = `CD_WORD_BITS;
+  localparam bit Persp        = HasPersp && HasCorrection && HasTable;
+  localparam int WordBits     = Persp ? `CD_PERSP_WORD_BITS : `CD_WORD_BITS;
   localparam int OutBits      = `CD_OUT_BITS;
   localparam int CountBits    = `CD_CYCLE_COUNT_BITS;
   localparam int BoundBits    = `CD_EDGE_BOUND_BITS;
@@ -201,6 +207,7 @@ module cd_scan_unit #(
   logic        f_kim_pipelined_d, f_kim_pipelined_q;
   logic [1:0]  f_density_log2_d, f_density_log2_q;
   logic        f_correction_d, f_correction_q;
+  logic        f_persp_d, f_persp_q;
   logic        f_per_pixel;                      // the front's triangle: a per-pixel design
   logic        f_mode_affine;                    // the front's triangle: affine (its own setup)
 
@@ -232,7 +239,7 @@ module cd_scan_unit #(
   logic        stage_busy;
   logic [1:0]  p_kind;
   logic [2:0]  p_segment_log2;
-  logic        p_kim_pipelined, p_correction, p_empty, p_bands, p_per_pixel;
+  logic        p_kim_pipelined, p_correction, p_persp, p_empty, p_bands, p_per_pixel;
   logic [1:0]  p_density_log2;
   logic [7:0]  p_flags;
 
@@ -246,6 +253,7 @@ module cd_scan_unit #(
   logic        hold;                             // a fragment offered and not taken: the unit holds
   logic [1:0]  b_density_log2_d, b_density_log2_q, density_log2_q;
   logic        b_correction_d, b_correction_q, correction_q;
+  logic        b_persp_d, b_persp_q, persp_q;
   logic signed [LineBits-1:0] band_lo_d, band_lo_q, band_hi_d, band_hi_q;
   logic signed [BandBits-1:0] band_lines_d, band_lines_q;  // the band walked, guards included
   logic [PixelBits-1:0] offset_d, offset_q;                 // the walker's column offset o
@@ -344,7 +352,7 @@ module cd_scan_unit #(
   setup_engine #(
     .HasLines(HasTable), .HasPixelPlanes(HasDivide || HasAffineSub || HasKim),
     .HasPlanes(HasTable || HasDivide || HasAffineSub || HasKim), .SramDepth(SramDepth),
-    .FillContext(FifoDepth > 1)
+    .FillContext(FifoDepth > 1), .HasPersp(Persp)
   ) u_setup_engine (
     .clk_i,
     .rst_ni,
@@ -486,7 +494,7 @@ module cd_scan_unit #(
     end
 
     correction_adder #(
-      .HasCorrection(HasCorrection)
+      .HasCorrection(HasCorrection), .HasPersp(Persp)
     ) u_correction_adder (
       .valid_i           (state_q == StPixel && !per_pixel),
       .own_entry_i       (own_entry),
@@ -494,13 +502,15 @@ module cd_scan_unit #(
       .correct_i         (correction_q && direction_q != 2'sd0),
       .offset_i          (span_offset_q),
       .weight_i          (weight_q),
+      .persp_i           (persp_q),
+      .direction_i       (direction_q),
       .u_o               (table_u),
       .v_o               (table_v),
       .flags_o           (table_flags)
     );
   end else begin : gen_no_table
     logic unused_table_addr;
-    assign unused_table_addr = ^{own_addr, neighbour_addr};
+    assign unused_table_addr = ^{own_addr, neighbour_addr, persp_q};
     assign table_u = '0;
     assign table_v = '0;
     assign table_flags = '0;
@@ -847,14 +857,14 @@ module cd_scan_unit #(
 
   // What the back needs to know of a triangle as it takes it: through the fill
   // stage with FifoDepth = 2, else straight from the front.
-  localparam int JobBits = 2 + 3 + 1 + 2 + 1 + 3 + 8;
+  localparam int JobBits = 2 + 3 + 1 + 2 + 1 + 1 + 3 + 8;
   logic [JobBits-1:0] p_job;
   context_register #(.Bits(JobBits), .Present(FillStage)) u_job_stage (
     .clk_i, .load_i(to_stage),
-    .d_i({f_kind_q, f_segment_log2_q, f_kim_pipelined_q, f_density_log2_q, f_correction_q, setup_empty,
+    .d_i({f_kind_q, f_segment_log2_q, f_kim_pipelined_q, f_density_log2_q, f_correction_q, f_persp_q, setup_empty,
           s_job_bands, f_per_pixel, setup_empty ? 8'd0 : setup_flags}),
     .q_o(p_job));
-  assign {p_kind, p_segment_log2, p_kim_pipelined, p_density_log2, p_correction, p_empty, p_bands, p_per_pixel,
+  assign {p_kind, p_segment_log2, p_kim_pipelined, p_density_log2, p_correction, p_persp, p_empty, p_bands, p_per_pixel,
           p_flags} = p_job;
 
   // The back's triangle: its own copy with FifoDepth >= 1, else the front's.
@@ -863,6 +873,7 @@ module cd_scan_unit #(
   assign kim_pipelined_q = FifoDepth > 0 ? b_kim_pipelined_q : f_kim_pipelined_q;
   assign density_log2_q = FifoDepth > 0 ? b_density_log2_q : f_density_log2_q;
   assign correction_q = FifoDepth > 0 ? b_correction_q : f_correction_q;
+  assign persp_q = FifoDepth > 0 ? b_persp_q : f_persp_q;
   assign {mode_divide, mode_affine, mode_sub, mode_kim} = modes_of(kind_q, segment_log2_q);
   assign per_pixel = mode_divide || mode_affine || mode_sub || mode_kim;
 
@@ -967,6 +978,7 @@ module cd_scan_unit #(
     f_kim_pipelined_d = f_kim_pipelined_q;
     f_density_log2_d = f_density_log2_q;
     f_correction_d = f_correction_q;
+    f_persp_d = f_persp_q;
 
     unique case (front_q)
       FrIdle, FrOffer: ;
@@ -990,6 +1002,7 @@ module cd_scan_unit #(
       f_kim_pipelined_d = kim_pipelined_i;
       f_density_log2_d = density_log2_i;
       f_correction_d = correction_i && HasCorrection;
+      f_persp_d = persp_i && Persp;
     end
   end
 
@@ -1064,6 +1077,7 @@ module cd_scan_unit #(
     b_kim_pipelined_d = b_kim_pipelined_q;
     b_density_log2_d = b_density_log2_q;
     b_correction_d = b_correction_q;
+    b_persp_d = b_persp_q;
     band_lo_d = band_lo_q;
     band_hi_d = band_hi_q;
     band_lines_d = band_lines_q;
@@ -1237,6 +1251,7 @@ module cd_scan_unit #(
       b_kim_pipelined_d = p_kim_pipelined;
       b_density_log2_d = p_density_log2;
       b_correction_d = p_correction;
+      b_persp_d = p_persp;
       lines_d = '0;
       bands_d = '0;
       pixels_d = '0;
@@ -1356,6 +1371,7 @@ module cd_scan_unit #(
       f_kim_pipelined_q <= 1'b0;
       f_density_log2_q <= '0;
       f_correction_q <= 1'b0;
+      f_persp_q <= 1'b0;
       fill_q <= FlIdle;
       fl_count_q <= '0;
       fl_band_lo_q <= '0;
@@ -1375,6 +1391,7 @@ module cd_scan_unit #(
       f_kim_pipelined_q <= f_kim_pipelined_d;
       f_density_log2_q <= f_density_log2_d;
       f_correction_q <= f_correction_d;
+      f_persp_q <= f_persp_d;
       fill_q <= fill_d;
       fl_count_q <= fl_count_d;
       fl_band_lo_q <= fl_band_lo_d;
@@ -1399,6 +1416,7 @@ module cd_scan_unit #(
       b_kim_pipelined_q <= 1'b0;
       b_density_log2_q <= '0;
       b_correction_q <= 1'b0;
+      b_persp_q <= 1'b0;
       band_lo_q <= '0;
       band_hi_q <= '0;
       band_lines_q <= '0;
@@ -1423,6 +1441,7 @@ module cd_scan_unit #(
       b_kim_pipelined_q <= b_kim_pipelined_d;
       b_density_log2_q <= b_density_log2_d;
       b_correction_q <= b_correction_d;
+      b_persp_q <= b_persp_d;
       band_lo_q <= band_lo_d;
       band_hi_q <= band_hi_d;
       band_lines_q <= band_lines_d;
@@ -1496,8 +1515,14 @@ module cd_scan_unit #(
   assign obs_write_tv_o = 64'($signed(observed_entry[`CD_WORD_TV_LSB +: TBits]));
   assign obs_write_su_o = 64'($signed(observed_entry[`CD_WORD_SU_LSB +: SBits]));
   assign obs_write_sv_o = 64'($signed(observed_entry[`CD_WORD_SV_LSB +: SBits]));
-  assign obs_write_flags_o = {observed_entry[`CD_WORD_DEPTH_RANGE_BIT],
-                              observed_entry[`CD_WORD_SATURATED_BIT]};
+  if (Persp) begin : gen_observe_eps
+    assign obs_write_eps_o = 32'($signed(observed_entry[`CD_WORD_EPS_LSB +: `CD_EPS_BITS]));
+    assign obs_write_flags_o = {observed_entry[`CD_WORD_EPS_SATURATED_BIT], observed_entry[`CD_WORD_DEPTH_RANGE_BIT],
+                                observed_entry[`CD_WORD_SATURATED_BIT]};
+  end else begin : gen_observe_no_eps
+    assign obs_write_eps_o = '0;
+    assign obs_write_flags_o = {1'b0, observed_entry[`CD_WORD_DEPTH_RANGE_BIT], observed_entry[`CD_WORD_SATURATED_BIT]};
+  end
 
 `ifndef SYNTHESIS
   // Handshakes: a fragment or record offered and refused stays unchanged until

@@ -1,23 +1,34 @@
 // Correction adder: u_line = T_k + o S_k for the pixel's line and, with a
-// usable neighbour, the paper's linear correction
-// u = u_line(k) + round(weight (u_line(k') - u_line(k)) 2^-d_frac), then
-// rounding and saturation to the output format. Twin of
-// model/correction_adder.hpp and of line_value in model/column_walker.hpp, at
-// the widths of model/derived_widths.cpp. Combinational; evaluated only while
-// valid_i.
+// usable neighbour, the correction u = u_line(k) + round(t (u_line(k') -
+// u_line(k)) 2^-d_frac), then rounding and saturation to the output format.
+// t is the column's |d| (the paper's linear correction) or, for cd-persp, the
+// perspective-correct weight t' = |d| + c e r, c = |d| (1 - |d|), e = +-eps_k,
+// r ~ 1 / (1 + |d| e) from a ROM of 1/m and a chord (docs/designs.md,
+// "cd-persp"). Twin of model/correction_adder.hpp and of line_value in
+// model/column_walker.hpp, at the widths of model/derived_widths.cpp.
+// Combinational (one cycle with the table read; cd-persp's weight adds three
+// multiplies to that path: docs/rtl.md); evaluated only while valid_i.
 `include "cd_widths.svh"
 `default_nettype none
 
 module correction_adder #(
-  parameter bit HasCorrection = 1'b1  // 0: no correction hardware (designs without it)
+  parameter bit HasCorrection = 1'b1,  // 0: no correction hardware (designs without it)
+  // cd-persp's weight (eps in the word, its ROM and multiplies), chosen per
+  // pixel by persp_i.
+  parameter bit HasPersp = 1'b0,
+  localparam int WordBits = HasPersp ? `CD_PERSP_WORD_BITS : `CD_WORD_BITS
 ) (
   input  logic                          valid_i,
-  input  logic [`CD_WORD_BITS-1:0]      own_entry_i,
-  input  logic [`CD_WORD_BITS-1:0]      neighbour_entry_i,
+  input  logic [WordBits-1:0]           own_entry_i,
+  input  logic [WordBits-1:0]           neighbour_entry_i,
   // Correction wanted: a design with correction and a pixel off its line.
   input  logic                          correct_i,
   input  logic [`CD_PIXEL_BITS-1:0]     offset_i,
   input  logic [`CD_WEIGHT_BITS-1:0]    weight_i,
+  // cd-persp: the perspective-correct weight, toward the neighbour at
+  // k + direction_i (+1 or -1).
+  input  logic                          persp_i,
+  input  logic signed [1:0]             direction_i,
   output logic signed [`CD_OUT_BITS-1:0] u_o,
   output logic signed [`CD_OUT_BITS-1:0] v_o,
   output logic [7:0]                    flags_o
@@ -35,7 +46,9 @@ module correction_adder #(
   localparam int Frac       = `CD_LINE_VALUE_FRAC;
   localparam int ValueBits  = `CD_LINE_VALUE_BITS;
   localparam int SumBits    = `CD_CORRECTED_BITS;
-  localparam int ProductBits = WeightBits + ValueBits + 2;
+  // The weight applied: |d| <= 1/2 (WeightBits), or cd-persp's t' <= 1.
+  localparam int AppliedBits = HasPersp ? DFrac + 1 : WeightBits;
+  localparam int ProductBits = AppliedBits + ValueBits + 2;
   localparam int OutShift   = Frac - OutFrac;
   localparam int OutLeft    = OutShift < 0 ? -OutShift : 0;
 
@@ -50,7 +63,7 @@ module correction_adder #(
   // own + round(weight (other - own) 2^-d_frac), ties toward +inf.
   function automatic logic signed [SumBits-1:0] corrected(input logic signed [ValueBits-1:0] own,
                                                           input logic signed [ValueBits-1:0] other,
-                                                          input logic [WeightBits-1:0] weight);
+                                                          input logic [AppliedBits-1:0] weight);
     logic signed [ProductBits-1:0] product;
     begin
       product = ProductBits'($signed({1'b0, weight})) * (ProductBits'(other) - ProductBits'(own));
@@ -58,6 +71,146 @@ module correction_adder #(
       corrected = SumBits'(own) + SumBits'(product);
     end
   endfunction
+
+  // cd-persp's formats (docs/designs.md, "cd-persp").
+  localparam int EpsFrac = `CD_EPS_FRAC;
+  localparam int EpsBits = `CD_EPS_BITS;
+  localparam int PFrac   = `CD_PERSP_FRAC;
+  localparam int TableLog2 = `CD_PERSP_TABLE_LOG2;
+  localparam int Entries = (1 << TableLog2) + 1;
+  localparam int EntryBits = PFrac + 1;             // 1 / m in (1/2, 1]
+  localparam int Fine = PFrac - TableLog2;          // bits between two entries
+  localparam int IndexBits = TableLog2 > 0 ? TableLog2 : 1;
+  localparam int XBits = PFrac + 2;                 // x in [-1/2, 1)
+  localparam int RBits = PFrac + 3;                 // r = 1/(1 + x) in (1/2, 2], signed
+  localparam int CBits = 2 * DFrac + 1;             // c = |d| (1 - |d|) <= 1/4, signed
+  localparam int CeBits = PFrac + 2;                // |c e| <= 1/2
+  localparam int TpBits = DFrac + 3;                // |d| + c e r in (-1, 3/2)
+  localparam int XShift = DFrac + EpsFrac - PFrac;
+  localparam int CeShift = 2 * DFrac + EpsFrac - PFrac;
+  localparam int TShift = 2 * PFrac - DFrac;
+
+  // The ROM: entry i = round(2^PFrac K / (K + i)), ties up, i = 0 .. K,
+  // computed at elaboration (64-bit: 2^(PFrac + 1) K < 2^40).
+  /* verilator lint_off UNUSEDSIGNAL */  // an entry's bits above EntryBits are 0
+  function automatic logic [Entries*EntryBits-1:0] rom_contents();
+    logic [63:0] k, entry;
+    begin
+      rom_contents = '0;
+      k = 64'(1) << TableLog2;
+      for (int i = 0; i < Entries; i++) begin
+        entry = ((k << (PFrac + 1)) / (k + 64'(i)) + 64'(1)) / 64'(2);
+        rom_contents[i*EntryBits +: EntryBits] = entry[EntryBits-1:0];
+      end
+    end
+  endfunction
+  /* verilator lint_on UNUSEDSIGNAL */
+  localparam logic [Entries*EntryBits-1:0] Rom = rom_contents();
+
+  // cd-persp's weight (zero when absent or not chosen).
+  logic [AppliedBits-1:0]      applied_weight;
+  logic                        eps_used_saturated;
+  if (HasPersp && HasCorrection) begin : gen_persp
+    logic signed [EpsBits-1:0]           e;
+    logic signed [DFrac+EpsBits+1:0]     x_product;
+    logic signed [XBits-1:0]             x_rounded, x;
+    logic signed [CBits-1:0]             c;
+    logic signed [CBits+EpsBits-1:0]     ce_product;
+    logic signed [CeBits-1:0]            ce;
+    logic signed [XBits:0]               y;
+    logic                                doubled;
+    logic [PFrac-1:0]                    f;
+    logic [IndexBits-1:0]                index;
+    logic [EntryBits-1:0]                lo, hi;
+    logic signed [EntryBits+Fine+1:0]    chord_product;
+    logic signed [EntryBits:0]           chord;
+    logic signed [RBits-1:0]             r;
+    logic signed [CeBits+RBits-1:0]      cer_product;
+    logic signed [TpBits-1:0]            cer, t;
+    logic [3:0]                          rounding_saturated;  // never: the formats hold every value
+
+    always_comb begin
+      e = '0;
+      x_product = '0;
+      c = '0;
+      ce_product = '0;
+      if (valid_i && persp_i) begin
+        e = own_entry_i[`CD_WORD_EPS_LSB +: EpsBits];
+        if (direction_i < 0) e = -e;
+        x_product = (DFrac+EpsBits+2)'($signed({1'b0, weight_i})) * (DFrac+EpsBits+2)'(e);
+        c = CBits'($signed({1'b0, weight_i})) * (CBits'(1 <<< DFrac) - CBits'($signed({1'b0, weight_i})));
+        ce_product = (CBits+EpsBits)'(c) * (CBits+EpsBits)'(e);
+      end
+    end
+
+    shift_round #(.InBits(DFrac+EpsBits+2), .OutBits(XBits), .ShiftBits(8), .MaxLeft(XShift < 0 ? -XShift : 0))
+      u_round_x (.enable_i(valid_i && persp_i), .in_i(x_product), .shift_i(8'(XShift)), .out_o(x_rounded),
+                 .saturated_o(rounding_saturated[0]));
+    shift_round #(.InBits(CBits+EpsBits), .OutBits(CeBits), .ShiftBits(8), .MaxLeft(CeShift < 0 ? -CeShift : 0))
+      u_round_ce (.enable_i(valid_i && persp_i), .in_i(ce_product), .shift_i(8'(CeShift)), .out_o(ce),
+                  .saturated_o(rounding_saturated[1]));
+
+    // 1 / (1 + x): 1 + x doubled into m in [1, 2) when below 1, then 1/m
+    // between ROM entries index and index + 1 (f = m - 1).
+    always_comb begin
+      x = x_rounded;
+      if (x_rounded < -XBits'(1 <<< (PFrac - 1))) x = -XBits'(1 <<< (PFrac - 1));
+      if (x_rounded > XBits'((1 <<< PFrac) - 1)) x = XBits'((1 <<< PFrac) - 1);
+      y = (XBits+1)'(1 <<< PFrac) + (XBits+1)'(x);
+      doubled = y < (XBits+1)'(1 <<< PFrac);
+      f = PFrac'(doubled ? y <<< 1 : y);
+      index = IndexBits'(f >> Fine);
+      lo = Rom[32'(index) * EntryBits +: EntryBits];
+      hi = Rom[(32'(index) + 1) * EntryBits +: EntryBits];
+      chord_product = ((EntryBits+Fine+2)'($signed({1'b0, hi})) - (EntryBits+Fine+2)'($signed({1'b0, lo}))) *
+                      (EntryBits+Fine+2)'($signed({1'b0, f & PFrac'((1 <<< Fine) - 1)}));
+    end
+
+    shift_round #(.InBits(EntryBits+Fine+2), .OutBits(EntryBits+1), .ShiftBits(8), .MaxLeft(0))
+      u_round_chord (.enable_i(valid_i && persp_i), .in_i(chord_product), .shift_i(8'(Fine)), .out_o(chord),
+                     .saturated_o(rounding_saturated[2]));
+
+    always_comb begin
+      r = RBits'($signed({1'b0, lo})) + RBits'(chord);
+      if (doubled) r = r <<< 1;
+      cer_product = (CeBits+RBits)'(ce) * (CeBits+RBits)'(r);
+    end
+
+    shift_round #(.InBits(CeBits+RBits), .OutBits(TpBits), .ShiftBits(8), .MaxLeft(TShift < 0 ? -TShift : 0))
+      u_round_t (.enable_i(valid_i && persp_i), .in_i(cer_product), .shift_i(8'(TShift)), .out_o(cer),
+                 .saturated_o(rounding_saturated[3]));
+
+    // t' = |d| + c e r, clamped to [0, 1], where the true t' lies.
+    always_comb begin
+      t = TpBits'($signed({1'b0, weight_i})) + cer;
+      if (t < 0) t = '0;
+      if (t > TpBits'(1 <<< DFrac)) t = TpBits'(1 <<< DFrac);
+      applied_weight = AppliedBits'($unsigned(weight_i));
+      if (persp_i) applied_weight = AppliedBits'(t);
+      eps_used_saturated = persp_i && own_entry_i[`CD_WORD_EPS_SATURATED_BIT];
+    end
+
+`ifndef SYNTHESIS
+    always_comb begin
+      if (valid_i && persp_i)
+        assert (rounding_saturated == '0)
+          else $error("correction_adder: a cd-persp intermediate left its format (%b)", rounding_saturated);
+    end
+`else
+    logic unused_rounding;
+    assign unused_rounding = ^rounding_saturated;
+`endif
+  end else begin : gen_linear
+    assign applied_weight = AppliedBits'(weight_i);
+    assign eps_used_saturated = 1'b0;
+    logic unused_persp;
+    assign unused_persp = ^{persp_i, direction_i};
+  end
+  // The neighbour's eps is never read: only the own line's eps enters t'.
+  if (HasPersp) begin : gen_unused_eps
+    logic unused_eps;
+    assign unused_eps = ^{own_entry_i[WordBits-1:`CD_WORD_BITS], neighbour_entry_i[WordBits-1:`CD_WORD_BITS]};
+  end
 
   logic signed [ValueBits-1:0] own_u, own_v, other_u, other_v;
   logic signed [SumBits-1:0]   sum_u, sum_v;
@@ -85,8 +238,8 @@ module correction_adder #(
       sum_u = SumBits'(own_u);
       sum_v = SumBits'(own_v);
       if (neighbour_usable) begin
-        sum_u = corrected(own_u, other_u, weight_i);
-        sum_v = corrected(own_v, other_v, weight_i);
+        sum_u = corrected(own_u, other_u, applied_weight);
+        sum_v = corrected(own_v, other_v, applied_weight);
       end
     end
   end
@@ -100,7 +253,9 @@ module correction_adder #(
   always_comb begin
     flags_o = '0;
     if (valid_i) begin
-      flags_o[`CD_FLAG_TABLE_SATURATED] = own_entry_i[`CD_WORD_SATURATED_BIT];
+      // A saturated eps counts where it is used: a pixel corrected with it.
+      flags_o[`CD_FLAG_TABLE_SATURATED] = own_entry_i[`CD_WORD_SATURATED_BIT] ||
+                                          (neighbour_usable && eps_used_saturated);
       flags_o[`CD_FLAG_DEPTH_RANGE] = own_entry_i[`CD_WORD_DEPTH_RANGE_BIT];
       flags_o[`CD_FLAG_NEIGHBOUR_DROPPED] = HasCorrection && correct_i && !neighbour_usable;
       flags_o[`CD_FLAG_OUTPUT_SATURATED] = saturated_u || saturated_v;

@@ -1,6 +1,7 @@
 // Setup engine: plane equations, orientation, slope g, per-triangle
 // normalisation, line range and the column walker's edge trackers, then the
-// per-line table fill (one reciprocal and four multiplies per line). Twin of
+// per-line table fill (one reciprocal and four multiplies per line, five for
+// cd-persp's eps). Twin of
 // model/setup_engine.cpp; every value follows its integer arithmetic exactly,
 // every signal has the width derived for it in model/derived_widths.cpp.
 //
@@ -34,7 +35,11 @@ module setup_engine #(
   // fills (cd_scan_unit's fill stage, setup_fifo_depth 2). Without it the fill
   // reads the setup engine's registers and starts at stage E.
   parameter bit FillContext = 1'b0,
-  localparam int AddrBits = $clog2(SramDepth)
+  // cd-persp: the fill also writes eps = q_line w_k and its saturation bit
+  // into the word (CD_WORD_EPS_LSB, CD_WORD_EPS_SATURATED_BIT).
+  parameter bit HasPersp = 1'b0,
+  localparam int AddrBits = $clog2(SramDepth),
+  localparam int WordBits = HasPersp ? `CD_PERSP_WORD_BITS : `CD_WORD_BITS
 ) (
   input  logic                       clk_i,
   input  logic                       rst_ni,
@@ -104,7 +109,7 @@ module setup_engine #(
   input  logic [AddrBits-1:0]        fill_addr_i,
   output logic                       write_valid_o,
   output logic [AddrBits-1:0]        write_addr_o,
-  output logic [`CD_WORD_BITS-1:0]   write_entry_o
+  output logic [WordBits-1:0]        write_entry_o
 );
 
   localparam int SubpixelBits = `CD_SUBPIXEL_BITS;
@@ -168,6 +173,10 @@ module setup_engine #(
   localparam int MaxTLeft = TFrac > RecipBits + UvInFrac ? TFrac - RecipBits - UvInFrac : 0;
   localparam int MaxSLeft = SFrac > RecipBits + UvInFrac ? SFrac - RecipBits - UvInFrac : 0;
   localparam int MaxPlaneLeft = PlaneBits + 2;
+  localparam int EpsFrac      = `CD_EPS_FRAC;
+  localparam int EpsBits      = `CD_EPS_BITS;
+  localparam int ProductEpsBits = PlaneStepQBits + RecipBits + 2;  // q_line R
+  localparam int MaxEpsLeft = EpsFrac > RecipBits ? EpsFrac - RecipBits : 0;
 
   localparam int FlagDepthRange = `CD_FLAG_DEPTH_RANGE;
 
@@ -1123,6 +1132,40 @@ module setup_engine #(
     shift_round #(.InBits(ProductSBits), .OutBits(SBits), .ShiftBits(ProductShiftBits), .MaxLeft(MaxSLeft))
       u_narrow_sv (.enable_i(result_valid), .in_i(product_sv), .shift_i(shift_s), .out_o(s_v), .saturated_o(entry_saturated[3]));
 
+    // cd-persp: eps = q_line R read with RecipBits + e fraction bits, to
+    // s2.eps_frac (round to nearest, saturate); its most negative code is
+    // moved up by one, so that -eps fits as well, and flagged.
+    logic signed [EpsBits-1:0] eps, eps_rounded;
+    logic                      eps_saturated;
+    if (HasPersp) begin : gen_eps
+      logic signed [ProductEpsBits-1:0]   product_eps;
+      logic signed [ProductShiftBits-1:0] shift_eps;
+      logic                               eps_overflow;
+      always_comb begin
+        product_eps = '0;
+        shift_eps = '0;
+        if (result_valid) begin
+          product_eps = ProductEpsBits'(fill_q_per_line) * ProductEpsBits'($signed({1'b0, recip}));
+          shift_eps = ProductShiftBits'($signed({1'b0, result_exponent})) + ProductShiftBits'(RecipBits - EpsFrac);
+        end
+      end
+      shift_round #(.InBits(ProductEpsBits), .OutBits(EpsBits), .ShiftBits(ProductShiftBits), .MaxLeft(MaxEpsLeft))
+        u_narrow_eps (.enable_i(result_valid), .in_i(product_eps), .shift_i(shift_eps), .out_o(eps_rounded),
+                      .saturated_o(eps_overflow));
+      always_comb begin
+        eps = eps_rounded;
+        eps_saturated = eps_overflow;
+        if (eps_rounded == {1'b1, {(EpsBits - 1){1'b0}}}) begin
+          eps = eps_rounded + EpsBits'(1);
+          eps_saturated = 1'b1;
+        end
+      end
+    end else begin : gen_no_eps
+      assign eps = '0;
+      assign eps_rounded = '0;
+      assign eps_saturated = 1'b0;
+    end
+
     always_comb begin
       write_entry_o = '0;
       write_entry_o[`CD_WORD_TU_LSB +: TBits] = t_u;
@@ -1131,6 +1174,10 @@ module setup_engine #(
       write_entry_o[`CD_WORD_SV_LSB +: SBits] = s_v;
       write_entry_o[`CD_WORD_SATURATED_BIT] = |entry_saturated;
       write_entry_o[`CD_WORD_DEPTH_RANGE_BIT] = result_depth_out;
+      if (HasPersp) begin
+        write_entry_o[`CD_WORD_EPS_LSB +: EpsBits] = eps;
+        write_entry_o[`CD_WORD_EPS_SATURATED_BIT] = eps_saturated;
+      end
     end
     assign write_valid_o = result_valid && !hold_i;
     assign write_addr_o = result_addr;

@@ -96,6 +96,7 @@ class Bench : public sc_core::sc_module {
     dut.segment_log2_i(segment_log2);
     dut.density_log2_i(density_log2);
     dut.correction_i(correction);
+    dut.persp_i(persp);
     dut.kim_pipelined_i(kim_pipelined);
     dut.frag_valid_o(frag_valid);
     dut.frag_ready_i(frag_ready);
@@ -122,6 +123,7 @@ class Bench : public sc_core::sc_module {
     dut.obs_write_tv_o(obs_write_tv);
     dut.obs_write_su_o(obs_write_su);
     dut.obs_write_sv_o(obs_write_sv);
+    dut.obs_write_eps_o(obs_write_eps);
     dut.obs_write_flags_o(obs_write_flags);
     SC_METHOD(on_falling_edge);
     sensitive << clk.negedge_event();
@@ -199,6 +201,7 @@ class Bench : public sc_core::sc_module {
       segment_log2.write(static_cast<uint32_t>(select.segment_log2));
       density_log2.write(static_cast<uint32_t>(select.density_log2));
       correction.write(select.correction);
+      persp.write(select.persp);
       kim_pipelined.write(select.kim_pipelined);
       presenting_ = true;
       presented_ = next_job_++;
@@ -249,6 +252,8 @@ class Bench : public sc_core::sc_module {
       w.s_v = static_cast<int64_t>(obs_write_sv.read());
       w.saturated = obs_write_flags.read() & 1;
       w.depth_range = (obs_write_flags.read() >> 1) & 1;
+      w.eps_saturated = (obs_write_flags.read() >> 2) & 1;
+      w.eps = static_cast<int32_t>(obs_write_eps.read());
       if (!scoreboard_.table_write(w)) fail();
     }
     if (rec_valid.read() && rec_ready.read()) {
@@ -306,12 +311,12 @@ class Bench : public sc_core::sc_module {
   sc_core::sc_signal<bool> rst_n{"rst_n"}, tri_valid{"tri_valid"}, tri_ready{"tri_ready"};
   sc_core::sc_signal<uint32_t> tri_x[3], tri_y[3], tri_q[3], tri_u[3], tri_v[3];
   sc_core::sc_signal<uint32_t> viewport_width, viewport_height, kind, segment_log2, density_log2;
-  sc_core::sc_signal<bool> correction, kim_pipelined, frag_valid, frag_ready, rec_valid, rec_ready;
+  sc_core::sc_signal<bool> correction, persp, kim_pipelined, frag_valid, frag_ready, rec_valid, rec_ready;
   sc_core::sc_signal<uint32_t> frag_x, frag_y, frag_flags;
   sc_core::sc_signal<uint64_t> frag_u, frag_v, rec_cycles;
   sc_core::sc_signal<uint32_t> rec_lines, rec_bands, rec_pixels, rec_flags;
   sc_core::sc_signal<bool> obs_setup_valid, obs_write_valid;
-  sc_core::sc_signal<uint32_t> obs_setup_bits, obs_setup_g, obs_write_addr, obs_write_flags;
+  sc_core::sc_signal<uint32_t> obs_setup_bits, obs_setup_g, obs_write_addr, obs_write_flags, obs_write_eps;
   sc_core::sc_signal<uint64_t> obs_setup_box, obs_setup_lines, obs_write_tu, obs_write_tv,
       obs_write_su, obs_write_sv;
 

@@ -102,9 +102,11 @@ bool Scoreboard::table_write(const RtlTableWrite& a) {
   ++writes_compared_;
   const bool saturated = (e.entry.flags & flag::kTableSaturated) != 0;
   const bool depth_range = (e.entry.flags & flag::kDepthRange) != 0;
+  const bool persp = x.job->design->persp;
   if (a.address == e.address && a.t_u == e.entry.t_u && a.t_v == e.entry.t_v &&
       a.s_u == e.entry.s_u && a.s_v == e.entry.s_v && a.saturated == saturated &&
-      a.depth_range == depth_range)
+      a.depth_range == depth_range &&
+      (!persp || (a.eps == e.entry.eps && a.eps_saturated == e.entry.eps_saturated)))
     return true;
   const std::string where = fmt::format("table write #{} (fill)", index);
   if (a.address != e.address) return fail(x, where, "address", e.address, a.address);
@@ -113,7 +115,9 @@ bool Scoreboard::table_write(const RtlTableWrite& a) {
   if (a.s_u != e.entry.s_u) return fail(x, where, "S.u", e.entry.s_u, a.s_u);
   if (a.s_v != e.entry.s_v) return fail(x, where, "S.v", e.entry.s_v, a.s_v);
   if (a.saturated != saturated) return fail(x, where, "table_saturated", saturated, a.saturated);
-  return fail(x, where, "depth_range", depth_range, a.depth_range);
+  if (a.depth_range != depth_range) return fail(x, where, "depth_range", depth_range, a.depth_range);
+  if (a.eps != e.entry.eps) return fail(x, where, "eps", e.entry.eps, a.eps);
+  return fail(x, where, "eps_saturated", e.entry.eps_saturated, a.eps_saturated);
 }
 
 bool Scoreboard::fragment(const RtlFragment& a) {

@@ -45,7 +45,8 @@ struct RtlSetup {
 // One table write.
 struct RtlTableWrite {
   int64_t address = 0, t_u = 0, t_v = 0, s_u = 0, s_v = 0;
-  bool saturated = false, depth_range = false;
+  int64_t eps = 0;  // cd-persp (compared only for its triangles: the fill of a unit with it always computes eps)
+  bool saturated = false, depth_range = false, eps_saturated = false;
 };
 
 struct RtlRecord {

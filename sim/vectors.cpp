@@ -49,7 +49,7 @@ const Layout kTriangle = {
     {"x2", 32}, {"y2", 32}, {"q2", 32}, {"u2", 32}, {"v2", 32}};
 const Layout kSetup = {{"bits", 8}, {"g", 32}, {"box", 64}, {"lines", 64}};
 const Layout kTableWrite = {{"address", 32}, {"t_u", 64}, {"t_v", 64}, {"s_u", 64},
-                            {"s_v", 64},     {"flags", 4}};
+                            {"s_v", 64},     {"eps", 32}, {"flags", 4}};
 const Layout kFragment = {{"x", 16}, {"y", 16}, {"u", 64}, {"v", 64}, {"flags", 8}};
 const Layout kRecord = {{"cycles", 64}, {"lines", 32},        {"bands", 32},    {"pixels", 32},
                         {"flags", 8},   {"table_writes", 32}, {"fragments", 32}};
@@ -80,7 +80,7 @@ std::string triangle_word(const Job& job) {
   const DesignSelect d = design_select(*job.design);
   const auto& v = job.triangle.vertex;
   return word(kTriangle,
-              {d.kind, d.segment_log2, d.kim_pipelined, d.density_log2, d.correction,
+              {d.kind, d.segment_log2, d.kim_pipelined, d.density_log2, d.correction | (d.persp << 1),
                job.viewport_width, job.viewport_height,
                v[0].x, v[0].y, v[0].q_float, v[0].u, v[0].v,
                v[1].x, v[1].y, v[1].q_float, v[1].u, v[1].v,
@@ -168,7 +168,9 @@ int run_vectors_command(const VectorsOptions& given) {
       setups += setup_word(trace.setup);
       for (const TableWrite& w : trace.writes)
         writes += word(kTableWrite, {w.address, w.entry.t_u, w.entry.t_v, w.entry.s_u, w.entry.s_v,
-                                     ((w.entry.flags & flag::kDepthRange) ? 2 : 0) |
+                                     w.entry.eps,
+                                     (job.design->persp ? 8 : 0) | (w.entry.eps_saturated ? 4 : 0) |
+                                         ((w.entry.flags & flag::kDepthRange) ? 2 : 0) |
                                          ((w.entry.flags & flag::kTableSaturated) ? 1 : 0)});
       for (const Fragment& f : fragments)
         fragments_text += word(kFragment, {f.x, f.y, f.u, f.v, f.flags});
@@ -221,7 +223,7 @@ int run_vectors_command(const VectorsOptions& given) {
                 "Only 'empty' counts for an empty triangle, and the lines not when no_lines; g and "
                 "the lines only in a unit with a table",
                 static_cast<int64_t>(jobs.size()), kSetup)},
-          {"table_writes.hex", file("scanline table", "obs_write_* of every table write, in order; flags {depth_range, saturated}",
+          {"table_writes.hex", file("scanline table", "obs_write_* of every table write, in order; eps; flags {eps checked (cd-persp), eps_saturated, depth_range, saturated}",
                                     write_count, kTableWrite)},
           {"fragments.hex", file("correction adder (or the design's per-pixel datapath)",
                                  "frag_* of every fragment taken, in order", fragment_count, kFragment)},

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # RTL coverage over the CI coverage set (docs/coverage.md): narrow widths on
-# random triangles of the nine fast designs and on the hard cases with all
-# eleven designs mixed, and with early_walk on the constant-depth designs,
+# random triangles of the ten fast designs and on the hard cases with all
+# twelve designs mixed, and with early_walk on the constant-depth designs,
 # with back-pressure, each run adding its data to one folder.
 # Fails if the line coverage of rtl/ is below MIN_LINES percent, if a design's
 # or an FSM state's cover point is never hit, or if the lcov and HTML reports
@@ -14,7 +14,7 @@
 set -euo pipefail
 cdsim=$1 work=$2 cache=$3 min_lines=$4 scale=${5:-1}
 rm -rf "$work" && mkdir -p "$work/empty"
-fast=cd-none,cd-linear,cd-dense2,cd-dense4,cd-dense2-linear,divide,affine-sub16,affine-sub8,affine
+fast=cd-none,cd-linear,cd-dense2,cd-dense4,cd-dense2-linear,cd-persp,divide,affine-sub16,affine-sub8,affine
 toggle=()
 ((scale > 1)) || toggle=(--no-toggle)
 run() { "$cdsim" regress --backpressure 0.3 --rtl-cache "$cache" --coverage "$work/cov" "${toggle[@]}" "$@" \
@@ -24,7 +24,7 @@ run --widths narrow --random $((300 * scale)) --seed 3 --design $fast
 run --widths narrow --scene hard:all --design mix
 # early_walk (a coverage build of its own): bands walked while they are filled.
 run --widths narrow --set early_walk=1 --random $((300 * scale)) --seed 7 \
-    --design cd-none,cd-linear,cd-dense2,cd-dense4,cd-dense2-linear
+    --design cd-none,cd-linear,cd-dense2,cd-dense4,cd-dense2-linear,cd-persp
 runs=3
 if ((scale > 1)); then
   # The Kim designs cost tens of thousands of cycles a random triangle: fewer of them.

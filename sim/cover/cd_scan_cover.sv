@@ -20,6 +20,7 @@ module cd_scan_cover (
   input logic       kim_pipelined_q,
   input logic [1:0] density_log2_q,
   input logic       correction_q,
+  input logic       persp_q,
   input logic       frag_valid_o,
   input logic       frag_ready_i,
   input logic       rec_valid_o,
@@ -84,7 +85,8 @@ module cd_scan_cover (
   // A triangle of every design finished (model/design.cpp's kind and options).
   wire cd = record && kind_q == 2'd0;
   c_design_cd_none:          cover property (@(posedge clk_i) cd && density_log2_q == 2'd0 && !correction_q);
-  c_design_cd_linear:        cover property (@(posedge clk_i) cd && density_log2_q == 2'd0 && correction_q);
+  c_design_cd_linear:        cover property (@(posedge clk_i) cd && density_log2_q == 2'd0 && correction_q && !persp_q);
+  c_design_cd_persp:         cover property (@(posedge clk_i) cd && density_log2_q == 2'd0 && correction_q && persp_q);
   c_design_cd_dense2:        cover property (@(posedge clk_i) cd && density_log2_q == 2'd1 && !correction_q);
   c_design_cd_dense4:        cover property (@(posedge clk_i) cd && density_log2_q == 2'd2 && !correction_q);
   c_design_cd_dense2_linear: cover property (@(posedge clk_i) cd && density_log2_q == 2'd1 && correction_q);
@@ -98,5 +100,5 @@ endmodule
 
 bind cd_scan_unit cd_scan_cover u_cover (
   .clk_i, .rst_ni, .state_q, .front_q, .fill_q, .full_q, .walk_bank_q, .take, .starve, .kind_q, .segment_log2_q, .kim_pipelined_q, .density_log2_q,
-  .correction_q, .frag_valid_o, .frag_ready_i, .rec_valid_o, .rec_ready_i, .rec_flags_o,
+  .correction_q, .persp_q, .frag_valid_o, .frag_ready_i, .rec_valid_o, .rec_ready_i, .rec_flags_o,
   .obs_setup_valid_o, .obs_setup_bits_o);

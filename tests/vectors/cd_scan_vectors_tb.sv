@@ -35,7 +35,7 @@ module cd_scan_vectors_tb;
     logic [3:0]  segment_log2;
     logic [3:0]  kim_pipelined;
     logic [3:0]  density_log2;
-    logic [3:0]  correction;
+    logic [3:0]  correction;  // {persp, correction}
     logic [15:0] viewport_width;
     logic [15:0] viewport_height;
     logic [31:0] x0, y0, q0, u0, v0;
@@ -51,7 +51,8 @@ module cd_scan_vectors_tb;
   typedef struct packed {
     logic [31:0] address;
     logic [63:0] t_u, t_v, s_u, s_v;
-    logic [3:0]  flags;  // {depth_range, saturated}
+    logic [31:0] eps;
+    logic [3:0]  flags;  // {eps checked (cd-persp), eps_saturated, depth_range, saturated}
   } table_write_t;
   typedef struct packed {
     logic [15:0] x, y;
@@ -94,7 +95,8 @@ module cd_scan_vectors_tb;
   logic        obs_write_valid;
   logic [31:0] obs_write_addr;
   logic [63:0] obs_write_tu, obs_write_tv, obs_write_su, obs_write_sv;
-  logic [1:0]  obs_write_flags;
+  logic [31:0] obs_write_eps;
+  logic [2:0]  obs_write_flags;
 
   cd_scan_unit #(`CD_VEC_UNIT_PARAMETERS, .HasObservation(1'b1)) dut (
     .clk_i(clk), .rst_ni(rst_n),
@@ -108,7 +110,7 @@ module cd_scan_vectors_tb;
     .viewport_width_i(presented.viewport_width), .viewport_height_i(presented.viewport_height),
     .kind_i(presented.kind[1:0]), .segment_log2_i(presented.segment_log2[2:0]),
     .kim_pipelined_i(presented.kim_pipelined[0]), .density_log2_i(presented.density_log2[1:0]),
-    .correction_i(presented.correction[0]),
+    .correction_i(presented.correction[0]), .persp_i(presented.correction[1]),
     .frag_valid_o(frag_valid), .frag_ready_i(frag_ready),
     .frag_x_o(frag_x), .frag_y_o(frag_y), .frag_u_o(frag_u), .frag_v_o(frag_v),
     .frag_flags_o(frag_flags),
@@ -121,7 +123,7 @@ module cd_scan_vectors_tb;
     .obs_write_valid_o(obs_write_valid), .obs_write_addr_o(obs_write_addr),
     .obs_write_tu_o(obs_write_tu), .obs_write_tv_o(obs_write_tv),
     .obs_write_su_o(obs_write_su), .obs_write_sv_o(obs_write_sv),
-    .obs_write_flags_o(obs_write_flags));
+    .obs_write_eps_o(obs_write_eps), .obs_write_flags_o(obs_write_flags));
 
   // ---- checks -------------------------------------------------------------
   int mismatches = 0;
@@ -177,7 +179,10 @@ module cd_scan_vectors_tb;
     if (obs_write_tv != e.t_v) mismatch(where, "T.v", e.t_v, obs_write_tv);
     if (obs_write_su != e.s_u) mismatch(where, "S.u", e.s_u, obs_write_su);
     if (obs_write_sv != e.s_v) mismatch(where, "S.v", e.s_v, obs_write_sv);
-    if (obs_write_flags != e.flags[1:0]) mismatch(where, "flags", 64'(e.flags), 64'(obs_write_flags));
+    if (obs_write_flags[1:0] != e.flags[1:0]) mismatch(where, "flags", 64'(e.flags), 64'(obs_write_flags));
+    if (e.flags[3] && obs_write_eps != e.eps) mismatch(where, "eps", 64'(e.eps), 64'(obs_write_eps));
+    if (e.flags[3] && obs_write_flags[2] != e.flags[2])
+      mismatch(where, "eps_saturated", 64'(e.flags[2]), 64'(obs_write_flags[2]));
   endfunction
 
   function automatic void check_fragment();
