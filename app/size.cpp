@@ -26,7 +26,7 @@ std::vector<std::string> sized_parameters(const Design& d) {
       std::vector<std::string> p = {"q_bits", "plane_bits", "recip_bits", "g_frac",
                                     "t_int",  "t_frac",     "s_int",      "s_frac"};
       if (d.correction) p.push_back("d_frac");
-      if (d.persp) p.insert(p.end(), {"persp_table_log2", "eps_frac", "persp_frac"});
+      if (d.persp) p.insert(p.end(), {"persp_table_log2", "eps_int", "eps_frac", "persp_frac"});
       return p;
     }
     case Design::Kind::Divide: return {"q_bits", "plane_bits", "recip_bits"};
@@ -46,7 +46,7 @@ Widths widest(Widths w, const Design& design) {
   for (const auto& [name, value] : std::vector<std::pair<std::string, int>>{
            {"q_bits", 32}, {"plane_bits", 48}, {"g_frac", 30}, {"recip_bits", 32}, {"t_int", 20},
            {"t_frac", 24}, {"s_int", 20}, {"s_frac", 24}, {"d_frac", 24}, {"kim_frac", 16},
-           {"persp_table_log2", 8}, {"eps_frac", 30}, {"persp_frac", 30}})
+           {"persp_table_log2", 8}, {"eps_int", 16}, {"eps_frac", 30}, {"persp_frac", 30}})
     if (std::find(sized.begin(), sized.end(), name) != sized.end()) set_param(w, name, value);
   if (design.kind == Design::Kind::ConstantDepth) w.table_depth = 65536 / 4;  // no banding while sizing
   return w;

@@ -40,11 +40,12 @@ inline CorrectedValue linear_correction(const LineValue& own, const LineValue& n
 // toward the neighbour k' = k + direction, where e = q_k' / q_k - 1 =
 // direction eps_k (the own line's table entry). Without a division:
 //   t' = |d| + c e r,  c = |d| (1 - |d|) (per column),  r ~ 1 / (1 + x),  x = |d| e,
-// r from a table of 1/m, m in [1, 2), K = 2^persp_table_log2 segments, linear
-// between entries (persp_reciprocal). x, r and c e carry persp_frac fraction
-// bits, each rounded to nearest; t' is rounded to d_frac bits and clamped to
-// [0, 1], where the true t' lies. docs/designs.md gives the bounds. Twin of
-// the RTL's persp stage (not built yet).
+// r = 2^-s / m from a table of 1/m, m = (1 + x) 2^-s in [1, 2),
+// K = 2^persp_table_log2 segments, linear between entries (persp_reciprocal).
+// x, 1/m and c e carry persp_frac fraction bits, each rounded to nearest
+// (m truncated); the 2^-s joins the last rounding, so t' is rounded once to
+// d_frac bits and clamped to [0, 1], where the true t' lies. docs/designs.md
+// gives the bounds. Twin of rtl/correction_adder.sv.
 
 // Entry i of the table: 1 / (1 + i / K) at persp_frac bits, i = 0 .. K.
 inline int64_t persp_table_entry(int64_t i, const Widths& w) {
@@ -53,33 +54,41 @@ inline int64_t persp_table_entry(int64_t i, const Widths& w) {
   return static_cast<int64_t>(((fx::Wide{k} << (w.persp_frac + 1)) / (k + i) + 1) / 2);
 }
 
-// 1 / (1 + x) for x in [-1/2, 1), both at persp_frac bits: 1 + x is brought
-// into m in [1, 2) (doubled when below 1), 1/m taken between two table entries.
-inline int64_t persp_reciprocal(int64_t x, const Widths& w) {
+// 1 / (1 + x) = reciprocal 2^-shift for x in [-1/2, 2^(eps_int - 2)), both
+// at persp_frac bits: 1 + x = m 2^shift with m in [1, 2) (shift = -1 doubles
+// it exactly; a positive shift truncates m to persp_frac fraction bits), 1/m
+// taken between two table entries.
+struct PerspReciprocal {
+  int64_t reciprocal = 0;  // 1/m in (1/2, 1], persp_frac bits
+  int shift = 0;           // -1 .. eps_int - 2
+};
+inline PerspReciprocal persp_reciprocal(int64_t x, const Widths& w) {
   const int pf = w.persp_frac, lg = w.persp_table_log2;
-  const int64_t y = (int64_t{1} << pf) + x;
-  const bool doubled = y < (int64_t{1} << pf);
-  const int64_t f = (doubled ? 2 * y : y) - (int64_t{1} << pf);  // m - 1, in [0, 2^pf)
-  const int fine = pf - lg;                                        // bits between entries
+  const int64_t y = (int64_t{1} << pf) + x;  // > 0
+  PerspReciprocal out;
+  out.shift = fx::bit_length(y) - 1 - pf;
+  const int64_t m = out.shift < 0 ? 2 * y : y >> out.shift;
+  const int64_t f = m - (int64_t{1} << pf);  // m - 1, in [0, 2^pf)
+  const int fine = pf - lg;                  // bits between entries
   const int64_t i = f >> fine, frac = f & ((int64_t{1} << fine) - 1);
   const int64_t lo = persp_table_entry(i, w), hi = persp_table_entry(i + 1, w);
-  const int64_t r = lo + static_cast<int64_t>(fx::shift_round(fx::Wide{hi - lo} * frac, fine, fx::Round::Nearest));
-  return doubled ? 2 * r : r;
+  out.reciprocal = lo + static_cast<int64_t>(fx::shift_round(fx::Wide{hi - lo} * frac, fine, fx::Round::Nearest));
+  return out;
 }
 
 inline int64_t persp_weight(int64_t weight, int direction, int64_t eps, const Widths& w) {
   using fx::Round;
   using fx::Wide;
   const int pf = w.persp_frac, df = w.d_frac;
-  const Wide e = direction > 0 ? eps : -eps;                // eps_frac bits, |e| < 2
+  const Wide e = direction > 0 ? eps : -eps;                // s<eps_int>.eps_frac
   const Wide c = Wide{weight} * ((Wide{1} << df) - weight);  // 2 d_frac bits
-  // |d| <= 1/2 and |e| < 2, so x < 1; x < -1/2 only by rounding (e = -1 is a
-  // neighbour at q = 0, which is never used).
+  // |d| <= 1/2 and |e| < 2^(eps_int - 1), so x < 2^(eps_int - 2); x < -1/2
+  // only by rounding (e = -1 is a neighbour at q = 0, which is never used).
   const Wide x = std::clamp<Wide>(fx::shift_round(Wide{weight} * e, df + w.eps_frac - pf, Round::Nearest),
-                                  -(Wide{1} << (pf - 1)), (Wide{1} << pf) - 1);
-  const Wide r = persp_reciprocal(static_cast<int64_t>(x), w);
+                                  -(Wide{1} << (pf - 1)), (Wide{1} << (pf + w.eps_int - 2)) - 1);
+  const PerspReciprocal r = persp_reciprocal(static_cast<int64_t>(x), w);
   const Wide ce = fx::shift_round(c * e, 2 * df + w.eps_frac - pf, Round::Nearest);
-  const Wide t = Wide{weight} + fx::shift_round(ce * r, 2 * pf - df, Round::Nearest);
+  const Wide t = Wide{weight} + fx::shift_round(ce * r.reciprocal, 2 * pf - df + r.shift, Round::Nearest);
   return static_cast<int64_t>(std::clamp<Wide>(t, 0, Wide{1} << df));
 }
 

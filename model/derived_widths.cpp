@@ -75,7 +75,7 @@ DerivedWidths derive(const Widths& w) {
   d.t_bits = w.t_int + w.t_frac;
   d.s_bits = w.s_int + w.s_frac;
   d.word_bits = 2 * d.t_bits + 2 * d.s_bits + 2;
-  d.eps_bits = 2 + w.eps_frac;
+  d.eps_bits = w.eps_int + w.eps_frac;
   d.persp_word_bits = d.word_bits + d.eps_bits + 1;
   d.line_value_frac = std::max(w.t_frac, w.s_frac);
   d.line_value_bits = std::max(d.t_bits + d.line_value_frac - w.t_frac,

@@ -254,7 +254,7 @@ TableEntry fill_line(const Setup& s, int64_t line, const Widths& w) {
   e.flags = (saturated ? flag::kTableSaturated : 0) | (r.out_of_range ? flag::kDepthRange : 0);
   if (s.persp) {
     // eps = q_line / q_k: the plane's step per line times the same reciprocal.
-    const fx::Format eps_format{2, w.eps_frac, true};
+    const fx::Format eps_format{w.eps_int, w.eps_frac, true};
     e.eps = static_cast<int64_t>(fx::narrow(s.q.per_line * r.mantissa, w.recip_bits + r.exponent,
                                             eps_format, fx::Round::Nearest, fx::Overflow::Saturate,
                                             &e.eps_saturated));

@@ -78,7 +78,7 @@ struct TableEntry {
   // used as a correction neighbour.
   uint32_t flags = 0;
   // cd-persp: eps = q_line w_k, the relative step of q from line k to k + 1
-  // (s2.eps_frac, symmetric: -eps is representable). Its saturation is kept
+  // (s<eps_int>.eps_frac, symmetric: -eps is representable). Its saturation is kept
   // apart from flags, since only a pixel on this line uses it, never its
   // neighbours; such a pixel raises kTableSaturated.
   int64_t eps = 0;

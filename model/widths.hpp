@@ -16,9 +16,9 @@ struct Widths {
   fx::Format t_format() const { return {t_int, t_frac, true}; }
   fx::Format s_format() const { return {s_int, s_frac, true}; }
   fx::Format out_format() const { return {out_int, out_frac, true}; }
-  // Table word: T.u, T.v, S.u, S.v, and for cd-persp eps (s2.eps_frac).
+  // Table word: T.u, T.v, S.u, S.v, and for cd-persp eps (s<eps_int>.eps_frac).
   int table_word_bits(bool persp = false) const {
-    return 2 * (t_int + t_frac) + 2 * (s_int + s_frac) + (persp ? 2 + eps_frac : 0);
+    return 2 * (t_int + t_frac) + 2 * (s_int + s_frac) + (persp ? eps_int + eps_frac : 0);
   }
 };
 

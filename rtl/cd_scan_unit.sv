@@ -129,7 +129,7 @@ module cd_scan_unit #(
   output logic [63:0] obs_write_tv_o,
   output logic [63:0] obs_write_su_o,
   output logic [63:0] obs_write_sv_o,
-  output logic [31:0] obs_write_eps_o,    // cd-persp's eps, sign-extended (0 without HasPersp)
+  output logic [63:0] obs_write_eps_o,    // cd-persp's eps, sign-extended (0 without HasPersp)
   output logic [2:0]  obs_write_flags_o   // {eps_saturated, depth_range, table_saturated}
 );
 
@@ -1516,7 +1516,7 @@ module cd_scan_unit #(
   assign obs_write_su_o = 64'($signed(observed_entry[`CD_WORD_SU_LSB +: SBits]));
   assign obs_write_sv_o = 64'($signed(observed_entry[`CD_WORD_SV_LSB +: SBits]));
   if (Persp) begin : gen_observe_eps
-    assign obs_write_eps_o = 32'($signed(observed_entry[`CD_WORD_EPS_LSB +: `CD_EPS_BITS]));
+    assign obs_write_eps_o = 64'($signed(observed_entry[`CD_WORD_EPS_LSB +: `CD_EPS_BITS]));
     assign obs_write_flags_o = {observed_entry[`CD_WORD_EPS_SATURATED_BIT], observed_entry[`CD_WORD_DEPTH_RANGE_BIT],
                                 observed_entry[`CD_WORD_SATURATED_BIT]};
   end else begin : gen_observe_no_eps

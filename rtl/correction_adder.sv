@@ -73,6 +73,7 @@ module correction_adder #(
   endfunction
 
   // cd-persp's formats (docs/designs.md, "cd-persp").
+  localparam int EpsInt  = `CD_EPS_INT;
   localparam int EpsFrac = `CD_EPS_FRAC;
   localparam int EpsBits = `CD_EPS_BITS;
   localparam int PFrac   = `CD_PERSP_FRAC;
@@ -81,14 +82,14 @@ module correction_adder #(
   localparam int EntryBits = PFrac + 1;             // 1 / m in (1/2, 1]
   localparam int Fine = PFrac - TableLog2;          // bits between two entries
   localparam int IndexBits = TableLog2 > 0 ? TableLog2 : 1;
-  localparam int XBits = PFrac + 2;                 // x in [-1/2, 1)
-  localparam int RBits = PFrac + 3;                 // r = 1/(1 + x) in (1/2, 2], signed
+  localparam int XBits = PFrac + EpsInt;            // x in [-1/2, 2^(EpsInt - 2)), signed
+  localparam int ShiftBits = $clog2(EpsInt + 1) + 1;  // s in [-1, EpsInt - 2], signed
   localparam int CBits = 2 * DFrac + 1;             // c = |d| (1 - |d|) <= 1/4, signed
-  localparam int CeBits = PFrac + 2;                // |c e| <= 1/2
+  localparam int CeBits = PFrac + EpsInt;           // |c e| < 2^(EpsInt - 3)
   localparam int TpBits = DFrac + 3;                // |d| + c e r in (-1, 3/2)
   localparam int XShift = DFrac + EpsFrac - PFrac;
   localparam int CeShift = 2 * DFrac + EpsFrac - PFrac;
-  localparam int TShift = 2 * PFrac - DFrac;
+  localparam int TShift = 2 * PFrac - DFrac;        // plus s
 
   // The ROM: entry i = round(2^PFrac K / (K + i)), ties up, i = 0 .. K,
   // computed at elaboration (64-bit: 2^(PFrac + 1) K < 2^40).
@@ -117,15 +118,17 @@ module correction_adder #(
     logic signed [CBits-1:0]             c;
     logic signed [CBits+EpsBits-1:0]     ce_product;
     logic signed [CeBits-1:0]            ce;
-    logic signed [XBits:0]               y;
-    logic                                doubled;
+    logic [XBits-1:0]                    y;          // 1 + x > 0
+    logic signed [ShiftBits-1:0]         shift;      // 1 + x = m 2^shift
+    logic [XBits:0]                      m;
     logic [PFrac-1:0]                    f;
     logic [IndexBits-1:0]                index;
     logic [EntryBits-1:0]                lo, hi;
     logic signed [EntryBits+Fine+1:0]    chord_product;
     logic signed [EntryBits:0]           chord;
-    logic signed [RBits-1:0]             r;
-    logic signed [CeBits+RBits-1:0]      cer_product;
+    logic signed [EntryBits+1:0]         r;          // 1/m
+    logic signed [CeBits+EntryBits+1:0]  cer_product;
+    logic signed [7:0]                   t_shift;
     logic signed [TpBits-1:0]            cer, t;
     logic [3:0]                          rounding_saturated;  // never: the formats hold every value
 
@@ -150,15 +153,21 @@ module correction_adder #(
       u_round_ce (.enable_i(valid_i && persp_i), .in_i(ce_product), .shift_i(8'(CeShift)), .out_o(ce),
                   .saturated_o(rounding_saturated[1]));
 
-    // 1 / (1 + x): 1 + x doubled into m in [1, 2) when below 1, then 1/m
-    // between ROM entries index and index + 1 (f = m - 1).
+    // 1 / (1 + x) = 2^-shift / m: 1 + x = m 2^shift with m in [1, 2) by its
+    // leading one (shift = -1 doubles it; a positive shift truncates m to
+    // PFrac fraction bits), then 1/m between ROM entries index and index + 1
+    // (f = m - 1).
     always_comb begin
       x = x_rounded;
-      if (x_rounded < -XBits'(1 <<< (PFrac - 1))) x = -XBits'(1 <<< (PFrac - 1));
-      if (x_rounded > XBits'((1 <<< PFrac) - 1)) x = XBits'((1 <<< PFrac) - 1);
-      y = (XBits+1)'(1 <<< PFrac) + (XBits+1)'(x);
-      doubled = y < (XBits+1)'(1 <<< PFrac);
-      f = PFrac'(doubled ? y <<< 1 : y);
+      if (x_rounded < -(XBits'(1) <<< (PFrac - 1))) x = -(XBits'(1) <<< (PFrac - 1));
+      if (x_rounded > (XBits'(1) <<< (PFrac + EpsInt - 2)) - XBits'(1)) x = (XBits'(1) <<< (PFrac + EpsInt - 2)) - XBits'(1);
+      y = (XBits'(1) <<< PFrac) + $unsigned(x);
+      shift = -ShiftBits'(1);
+      for (int b = PFrac; b < XBits; b++)
+        if (y[b]) shift = ShiftBits'(b - PFrac);
+      if (shift < 0) m = {y, 1'b0};
+      else m = {1'b0, y >> shift[ShiftBits-2:0]};
+      f = m[PFrac-1:0];
       index = IndexBits'(f >> Fine);
       lo = Rom[32'(index) * EntryBits +: EntryBits];
       hi = Rom[(32'(index) + 1) * EntryBits +: EntryBits];
@@ -171,13 +180,15 @@ module correction_adder #(
                      .saturated_o(rounding_saturated[2]));
 
     always_comb begin
-      r = RBits'($signed({1'b0, lo})) + RBits'(chord);
-      if (doubled) r = r <<< 1;
-      cer_product = (CeBits+RBits)'(ce) * (CeBits+RBits)'(r);
+      r = (EntryBits+2)'($signed({1'b0, lo})) + (EntryBits+2)'(chord);
+      cer_product = (CeBits+EntryBits+2)'(ce) * (CeBits+EntryBits+2)'(r);
+      t_shift = 8'(TShift) + 8'(shift);
     end
 
-    shift_round #(.InBits(CeBits+RBits), .OutBits(TpBits), .ShiftBits(8), .MaxLeft(TShift < 0 ? -TShift : 0))
-      u_round_t (.enable_i(valid_i && persp_i), .in_i(cer_product), .shift_i(8'(TShift)), .out_o(cer),
+    // c e / m 2^-shift, rounded once to d_frac bits.
+    shift_round #(.InBits(CeBits+EntryBits+2), .OutBits(TpBits), .ShiftBits(8),
+                  .MaxLeft(TShift < 1 ? 1 - TShift : 0))
+      u_round_t (.enable_i(valid_i && persp_i), .in_i(cer_product), .shift_i(t_shift), .out_o(cer),
                  .saturated_o(rounding_saturated[3]));
 
     // t' = |d| + c e r, clamped to [0, 1], where the true t' lies.

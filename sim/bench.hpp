@@ -253,7 +253,7 @@ class Bench : public sc_core::sc_module {
       w.saturated = obs_write_flags.read() & 1;
       w.depth_range = (obs_write_flags.read() >> 1) & 1;
       w.eps_saturated = (obs_write_flags.read() >> 2) & 1;
-      w.eps = static_cast<int32_t>(obs_write_eps.read());
+      w.eps = static_cast<int64_t>(obs_write_eps.read());
       if (!scoreboard_.table_write(w)) fail();
     }
     if (rec_valid.read() && rec_ready.read()) {
@@ -316,7 +316,8 @@ class Bench : public sc_core::sc_module {
   sc_core::sc_signal<uint64_t> frag_u, frag_v, rec_cycles;
   sc_core::sc_signal<uint32_t> rec_lines, rec_bands, rec_pixels, rec_flags;
   sc_core::sc_signal<bool> obs_setup_valid, obs_write_valid;
-  sc_core::sc_signal<uint32_t> obs_setup_bits, obs_setup_g, obs_write_addr, obs_write_flags, obs_write_eps;
+  sc_core::sc_signal<uint32_t> obs_setup_bits, obs_setup_g, obs_write_addr, obs_write_flags;
+  sc_core::sc_signal<uint64_t> obs_write_eps;
   sc_core::sc_signal<uint64_t> obs_setup_box, obs_setup_lines, obs_write_tu, obs_write_tv,
       obs_write_su, obs_write_sv;
 

@@ -49,7 +49,7 @@ const Layout kTriangle = {
     {"x2", 32}, {"y2", 32}, {"q2", 32}, {"u2", 32}, {"v2", 32}};
 const Layout kSetup = {{"bits", 8}, {"g", 32}, {"box", 64}, {"lines", 64}};
 const Layout kTableWrite = {{"address", 32}, {"t_u", 64}, {"t_v", 64}, {"s_u", 64},
-                            {"s_v", 64},     {"eps", 32}, {"flags", 4}};
+                            {"s_v", 64},     {"eps", 64}, {"flags", 4}};
 const Layout kFragment = {{"x", 16}, {"y", 16}, {"u", 64}, {"v", 64}, {"flags", 8}};
 const Layout kRecord = {{"cycles", 64}, {"lines", 32},        {"bands", 32},    {"pixels", 32},
                         {"flags", 8},   {"table_writes", 32}, {"fragments", 32}};

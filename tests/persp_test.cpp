@@ -37,7 +37,8 @@ TEST(PerspTable, ReciprocalIsTheChordWithinItsBound) {
     long double worst = 0;
     for (int64_t x = -(int64_t{1} << (w.persp_frac - 1)); x < (int64_t{1} << w.persp_frac); x += 9973) {
       const long double xr = std::ldexp(static_cast<long double>(x), -w.persp_frac);
-      const long double got = std::ldexp(static_cast<long double>(persp_reciprocal(x, w)), -w.persp_frac);
+      const PerspReciprocal r = persp_reciprocal(x, w);
+      const long double got = std::ldexp(static_cast<long double>(r.reciprocal), -w.persp_frac - r.shift);
       // The table's roundings: half an LSB per entry and the interpolation's, doubled.
       ASSERT_LE(std::fabs(got - testing::chord_reciprocal(xr, lg)), 4 * lsb) << "K " << k << " x " << double(xr);
       worst = std::max(worst, std::fabs(got - 1 / (1 + xr)));
@@ -48,6 +49,28 @@ TEST(PerspTable, ReciprocalIsTheChordWithinItsBound) {
   }
 }
 
+TEST(PerspTable, ReciprocalOverManyBinadesIsTheChordScaled) {
+  // With eps_int > 2, 1 + x spans binades up to 2^(eps_int - 2): the same
+  // table, the operand normalised by its leading one (m truncated to
+  // persp_frac bits: at most 2^-persp_frac of relative error more).
+  Widths w;
+  w.persp_frac = 24;
+  w.eps_int = 12;
+  for (int lg : {0, 4, 8}) {
+    w.persp_table_log2 = lg;
+    const int64_t top = int64_t{1} << (w.persp_frac + w.eps_int - 2);
+    for (int64_t x = -(int64_t{1} << (w.persp_frac - 1)); x < top; x += top / 4099 + 1) {
+      const long double xr = std::ldexp(static_cast<long double>(x), -w.persp_frac);
+      const PerspReciprocal r = persp_reciprocal(x, w);
+      ASSERT_GE(r.shift, -1);
+      ASSERT_LE(r.shift, w.eps_int - 2);
+      const long double got = std::ldexp(static_cast<long double>(r.reciprocal), -w.persp_frac - r.shift);
+      const long double ideal = testing::chord_reciprocal(xr, lg);
+      ASSERT_LE(std::fabs(got - ideal) / ideal, std::ldexp(6.0L, -w.persp_frac)) << "K 2^" << lg << " x " << double(xr);
+    }
+  }
+}
+
 TEST(PerspWeight, EqualsTheAlgorithmInLongDoubleToHalfAnLsb) {
   Widths w;
   w.d_frac = 12;
@@ -55,13 +78,15 @@ TEST(PerspWeight, EqualsTheAlgorithmInLongDoubleToHalfAnLsb) {
   w.persp_frac = 30;
   const long double weight_lsb = std::ldexp(1.0L, -w.d_frac);
   int64_t checked = 0;
-  for (int lg : {0, 3, 6}) {
+  for (auto [lg, eps_int] : {std::pair{0, 2}, {3, 2}, {6, 2}, {4, 10}}) {
     w.persp_table_log2 = lg;
+    w.eps_int = eps_int;
+    const int64_t eps_top = int64_t{1} << (w.eps_frac + eps_int - 1);
     for (int64_t weight = 0; weight <= (int64_t{1} << (w.d_frac - 1)); weight += 37) {
-      // eps over (-2, 2): the values the table can hold. e <= -1 means a
-      // neighbour at q <= 0, which is never used: skipped.
-      for (int64_t eps = -(int64_t{1} << (w.eps_frac + 1)) + 1; eps < (int64_t{1} << (w.eps_frac + 1));
-           eps += int64_t{1} << (w.eps_frac - 5)) {
+      // eps over (-2^(eps_int - 1), 2^(eps_int - 1)): the values the table
+      // can hold. e <= -1 means a neighbour at q <= 0, which is never used:
+      // skipped.
+      for (int64_t eps = -eps_top + 1; eps < eps_top; eps += eps_top >> 6) {
         for (int direction : {-1, 1}) {
           const long double a = std::ldexp(static_cast<long double>(weight), -w.d_frac);
           const long double e = direction * std::ldexp(static_cast<long double>(eps), -w.eps_frac);

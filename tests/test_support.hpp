@@ -74,11 +74,11 @@ inline std::vector<std::pair<int64_t, int64_t>> brute_force_pixels(const UnitTri
 // 1 / (1 + i / K), K = 2^table_log2, halved back.
 inline long double chord_reciprocal(long double x, int table_log2) {
   const long double k = std::ldexp(1.0L, table_log2), y = 1 + x;
-  const bool doubled = y < 1;
-  const long double m = doubled ? 2 * y : y;
+  const int shift = std::ilogb(y);  // 1 + x = m 2^shift, m in [1, 2)
+  const long double m = std::ldexp(y, -shift);
   const long double i = std::floor((m - 1) * k), frac = (m - 1) * k - i;
   const long double lo = 1 / (1 + i / k), hi = 1 / (1 + (i + 1) / k);
-  return (lo + (hi - lo) * frac) * (doubled ? 2 : 1);
+  return std::ldexp(lo + (hi - lo) * frac, -shift);
 }
 
 // The ideal value of a constant-depth design at one pixel, in long double:

@@ -51,7 +51,7 @@ module cd_scan_vectors_tb;
   typedef struct packed {
     logic [31:0] address;
     logic [63:0] t_u, t_v, s_u, s_v;
-    logic [31:0] eps;
+    logic [63:0] eps;
     logic [3:0]  flags;  // {eps checked (cd-persp), eps_saturated, depth_range, saturated}
   } table_write_t;
   typedef struct packed {
@@ -95,7 +95,7 @@ module cd_scan_vectors_tb;
   logic        obs_write_valid;
   logic [31:0] obs_write_addr;
   logic [63:0] obs_write_tu, obs_write_tv, obs_write_su, obs_write_sv;
-  logic [31:0] obs_write_eps;
+  logic [63:0] obs_write_eps;
   logic [2:0]  obs_write_flags;
 
   cd_scan_unit #(`CD_VEC_UNIT_PARAMETERS, .HasObservation(1'b1)) dut (
@@ -180,7 +180,7 @@ module cd_scan_vectors_tb;
     if (obs_write_su != e.s_u) mismatch(where, "S.u", e.s_u, obs_write_su);
     if (obs_write_sv != e.s_v) mismatch(where, "S.v", e.s_v, obs_write_sv);
     if (obs_write_flags[1:0] != e.flags[1:0]) mismatch(where, "flags", 64'(e.flags), 64'(obs_write_flags));
-    if (e.flags[3] && obs_write_eps != e.eps) mismatch(where, "eps", 64'(e.eps), 64'(obs_write_eps));
+    if (e.flags[3] && obs_write_eps != e.eps) mismatch(where, "eps", e.eps, obs_write_eps);
     if (e.flags[3] && obs_write_flags[2] != e.flags[2])
       mismatch(where, "eps_saturated", 64'(e.flags[2]), 64'(obs_write_flags[2]));
   endfunction
