@@ -120,7 +120,6 @@ module correction_adder #(
     logic signed [CeBits-1:0]            ce;
     logic [XBits-1:0]                    y;          // 1 + x > 0
     logic signed [ShiftBits-1:0]         shift;      // 1 + x = m 2^shift
-    logic [XBits:0]                      m;
     logic [PFrac-1:0]                    f;
     logic [IndexBits-1:0]                index;
     logic [EntryBits-1:0]                lo, hi;
@@ -165,9 +164,9 @@ module correction_adder #(
       shift = -ShiftBits'(1);
       for (int b = PFrac; b < XBits; b++)
         if (y[b]) shift = ShiftBits'(b - PFrac);
-      if (shift < 0) m = {y, 1'b0};
-      else m = {1'b0, y >> shift[ShiftBits-2:0]};
-      f = m[PFrac-1:0];
+      // f = m - 1: the fraction bits of m.
+      if (shift < 0) f = PFrac'({y, 1'b0});
+      else f = PFrac'(y >> shift[ShiftBits-2:0]);
       index = IndexBits'(f >> Fine);
       lo = Rom[32'(index) * EntryBits +: EntryBits];
       hi = Rom[(32'(index) + 1) * EntryBits +: EntryBits];
