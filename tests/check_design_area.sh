@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Each design's unit holds only its own hardware: synthesises cd-linear,
-# divide and affine at narrow widths (cdsim area, fresh cache) and checks the
-# blocks each report lists. cd-linear has a table, a fill reciprocal and a
-# correction adder and no per-pixel planes; divide has no table and no
+# cd-persp, divide and affine at narrow widths (cdsim area, fresh cache) and
+# checks the blocks each report lists. cd-linear has a table, a fill
+# reciprocal and a correction adder and no per-pixel planes; cd-persp adds eps
+# to the table word, a multiply to the fill and the weight to the correction
+# adder, and nothing else; divide has no table and no
 # correction adder, and a pixel reciprocal, multiply and plane accumulators;
 # affine has no table and no reciprocal at all, and its own setup.
 # Usage: check_design_area.sh CDSIM WORKDIR "NARROW SETTINGS"
@@ -11,7 +13,7 @@ cdsim=$1 work=$2 narrow=$3
 rm -rf "$work" && mkdir -p "$work"
 args=()
 for s in $narrow; do args+=(--set "$s"); done
-for d in cd-linear divide affine; do
+for d in cd-linear cd-persp divide affine; do
   "$cdsim" area --design "$d" "${args[@]}" --cache "$work/cache" --json "$work/$d.json" >/dev/null
 done
 /usr/bin/python3 - "$work" <<'PY'
@@ -25,15 +27,21 @@ def expect(cond, what):
     print(("ok   " if cond else "FAIL ") + what)
     if not cond: failures.append(what)
 cd, cd_blocks = load("cd-linear")
+cp, cp_blocks = load("cd-persp")
 dv, dv_blocks = load("divide")
 af, af_blocks = load("affine")
-for name, (r, b) in {"cd-linear": (cd, cd_blocks), "divide": (dv, dv_blocks), "affine": (af, af_blocks)}.items():
+for name, (r, b) in {"cd-linear": (cd, cd_blocks), "cd-persp": (cp, cp_blocks), "divide": (dv, dv_blocks),
+                     "affine": (af, af_blocks)}.items():
     total = sum(b.values())
     expect(abs(total - r["logic_area_um2"]) <= 1e-6 * total, f"{name}: blocks sum to the logic area ({total:.0f} um^2)")
 expect(cd["sram_bits"] > 0, "cd-linear has a table")
 expect(cd_blocks.get("correction adder", 0) > 0, "cd-linear has a correction adder")
 expect(cd_blocks.get("reciprocal", 0) > 0, "cd-linear has the fill's reciprocal")
 expect("plane accumulators" not in cd_blocks and "affine setup" not in cd_blocks, "cd-linear has no per-pixel planes")
+expect(cp["sram_bits"] > cd["sram_bits"], f"cd-persp's table words hold eps ({cp['sram_bits']} bits against {cd['sram_bits']})")
+expect(cp_blocks["correction adder"] > cd_blocks["correction adder"], "cd-persp's correction adder has the weight's multiplies and ROM")
+expect(cp_blocks["setup engine"] > cd_blocks["setup engine"], "cd-persp's fill has the eps multiply")
+expect(set(cp_blocks) == set(cd_blocks), "cd-persp has cd-linear's blocks and no others")
 expect(dv["sram_bits"] == 0 and dv["total_area_um2"] == dv["logic_area_um2"], "divide has no table")
 expect("correction adder" not in dv_blocks, "divide has no correction adder")
 expect(dv_blocks.get("reciprocal", 0) > 0 and dv_blocks.get("pixel multiply", 0) > 0, "divide has a pixel reciprocal and multiply")
