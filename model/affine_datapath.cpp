@@ -9,12 +9,15 @@ fx::Wide divide_nearest(fx::Wide numerator, fx::Wide denominator) {
   return fx::floor_div(2 * numerator + denominator, 2 * denominator);
 }
 
-CorrectedValue to_output(int64_t u, int64_t v, const Widths& w) {
-  const int64_t hi = (int64_t{1} << (w.out_int + w.out_frac - 1)) - 1;
+// u, v in affine_format scaled by 2^extra_shift, rounded to the output format.
+CorrectedValue to_output(fx::Wide u, fx::Wide v, const Widths& w, int extra_shift = 0) {
   CorrectedValue out;
-  const int shift = w.s_frac - w.out_frac;
-  out.u = fx::narrow_nearest_saturate(u, shift, -hi - 1, hi, &out.saturated);
-  out.v = fx::narrow_nearest_saturate(v, shift, -hi - 1, hi, &out.saturated);
+  const int from_frac = w.s_frac + extra_shift;
+  const fx::Format format = w.out_format();
+  out.u = static_cast<int64_t>(fx::narrow(u, from_frac, format, fx::Round::Nearest, fx::Overflow::Saturate,
+                                          &out.saturated));
+  out.v = static_cast<int64_t>(fx::narrow(v, from_frac, format, fx::Round::Nearest, fx::Overflow::Saturate,
+                                          &out.saturated));
   return out;
 }
 
@@ -68,6 +71,36 @@ CorrectedValue interpolate_segment(const CorrectedValue& a, const CorrectedValue
   };
   CorrectedValue out = to_output(a.u + position * step(a.u, b.u), a.v + position * step(a.v, b.v), w);
   out.saturated |= a.saturated || b.saturated;
+  return out;
+}
+
+int64_t quadratic_segment_length(int64_t remaining, int64_t segment) {
+  if (remaining >= segment) return segment;
+  int64_t length = 1;
+  while (2 * length <= remaining) length *= 2;
+  return length;
+}
+
+CorrectedValue quadratic_segment(const CorrectedValue& a, const CorrectedValue& m, const CorrectedValue& b,
+                                 int64_t length, int64_t position, const Widths& w) {
+  CorrectedValue out;
+  if (length == 1) {
+    out = to_output(position == 0 ? a.u : b.u, position == 0 ? a.v : b.v, w);
+    out.saturated |= a.saturated || b.saturated;
+    return out;
+  }
+  // With h = length / 2, the quadratic times 2 h^2 at p is
+  //   2 h^2 a + p ((4m - 3a - b) h + (a - 2m + b)) + p (p - 1) (a - 2m + b):
+  // a at 0, m at h, b at 2h, and its forward differences are integers.
+  const fx::Wide h = length / 2, p = position;
+  const auto at = [&](fx::Wide fa, fx::Wide fm, fx::Wide fb) {
+    const fx::Wide curve = fa - 2 * fm + fb;
+    return 2 * h * h * fa + p * ((4 * fm - 3 * fa - fb) * h + curve) + p * (p - 1) * curve;
+  };
+  int scale = 1;  // log2(2 h^2)
+  while ((fx::Wide{1} << scale) < 2 * h * h) ++scale;
+  out = to_output(at(a.u, m.u, b.u), at(a.v, m.v, b.v), w, scale);
+  out.saturated |= a.saturated || m.saturated || b.saturated;
   return out;
 }
 

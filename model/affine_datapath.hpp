@@ -31,4 +31,18 @@ inline fx::Format affine_format(const Widths& w) { return {w.t_int, w.s_frac, tr
 CorrectedValue interpolate_segment(const CorrectedValue& a, const CorrectedValue& b, int64_t length,
                                    int64_t position, const Widths& widths);
 
+// quad-subN (docs/designs.md): a span's segments. From `first` with `remaining`
+// pixels left to the span's last, the next segment is N pixels long while at
+// least N remain, else the largest power of two <= remaining (an 11-pixel
+// remainder of quad-sub16 is 8 + 2 + 1).
+int64_t quadratic_segment_length(int64_t remaining, int64_t segment);
+
+// u, v on the quadratic through the exact points a (position 0), m (length / 2)
+// and b (length) of a segment whose length is a power of two, at `position`
+// (0 .. length), evaluated exactly (the forward differences of
+// rtl/quad_sub_datapath.sv are exact) and rounded once to the output format.
+// A 1-pixel segment has no middle point: a at 0, b at 1.
+CorrectedValue quadratic_segment(const CorrectedValue& a, const CorrectedValue& m, const CorrectedValue& b,
+                                 int64_t length, int64_t position, const Widths& widths);
+
 }  // namespace cdsim

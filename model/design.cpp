@@ -24,6 +24,10 @@ const std::vector<Design>& all_designs() {
        "Kim-style: midpoint integer part, pipelined restoring-division fraction (reconstruction)"},
       {"affine-sub16", K::Affine, 1, false, false, 16, "exact divide every 16 pixels, affine between"},
       {"affine-sub8", K::Affine, 1, false, false, 8, "exact divide every 8 pixels, affine between"},
+      {"quad-sub16", K::Affine, 1, false, false, 16,
+       "exact divide at the start, middle and end of every 16-pixel segment, quadratic between", false, true},
+      {"quad-sub32", K::Affine, 1, false, false, 32,
+       "exact divide at the start, middle and end of every 32-pixel segment, quadratic between", false, true},
       {"affine", K::Affine, 1, false, false, 0, "plain affine interpolation of u, v (not perspective-correct)"},
   };
   return designs;
@@ -33,8 +37,8 @@ bool has_rtl(const Design& design) {
   switch (design.kind) {
     case Design::Kind::ConstantDepth:
     case Design::Kind::Divide:
-    case Design::Kind::Kim:
-    case Design::Kind::Affine: return true;
+    case Design::Kind::Kim: return true;
+    case Design::Kind::Affine: return !design.quadratic;
   }
   return false;
 }
@@ -49,7 +53,7 @@ std::string rtl_design_names() {
 std::vector<UnitParameter> unit_parameters(const std::vector<const Design*>& designs) {
   int density_log2 = 0, segment_log2 = 0;
   bool correction = false, table = false, divide = false, affine = false, affine_sub = false;
-  bool kim_iter = false, kim_pipe = false, persp = false;
+  bool kim_iter = false, kim_pipe = false, persp = false, quad_sub = false;
   for (const Design* d : designs) {
     switch (d->kind) {
       case Design::Kind::ConstantDepth:
@@ -64,17 +68,17 @@ std::vector<UnitParameter> unit_parameters(const std::vector<const Design*>& des
         if (d->subdivision == 0) {
           affine = true;
         } else {
-          affine_sub = true;
+          (d->quadratic ? quad_sub : affine_sub) = true;
           segment_log2 = std::max(segment_log2, log2_ceil(d->subdivision));
         }
         break;
     }
   }
-  if (!affine_sub) segment_log2 = 4;  // the unit's default; nothing uses it
+  if (!affine_sub && !quad_sub) segment_log2 = 4;  // the unit's default; nothing uses it
   return {{"MaxDensityLog2", density_log2}, {"HasCorrection", correction}, {"HasPersp", persp},
           {"HasTable", table},              {"HasDivide", divide},
           {"HasAffine", affine},            {"HasAffineSub", affine_sub},
-          {"MaxSegmentLog2", segment_log2}, {"HasKimIter", kim_iter},
+          {"HasQuadSub", quad_sub},         {"MaxSegmentLog2", segment_log2}, {"HasKimIter", kim_iter},
           {"HasKimPipe", kim_pipe}};
 }
 

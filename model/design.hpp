@@ -20,6 +20,9 @@ struct Design {
   // Constant depth with correction: the perspective-correct weight from the
   // line's q ratio (cd-persp, docs/designs.md) instead of the linear |d|.
   bool persp = false;
+  // Affine kind, subdivided: a quadratic through three exact points per
+  // segment (quad-subN, docs/designs.md) instead of a line through two.
+  bool quadratic = false;
 };
 
 const std::vector<Design>& all_designs();
@@ -33,7 +36,8 @@ const Design& find_design(const std::string& name);
 std::vector<Design> parse_design_list(const std::string& list);
 
 // The unit's design inputs for one triangle (rtl/cd_scan_unit.sv: kind_i,
-// segment_log2_i, kim_pipelined_i, density_log2_i, correction_i, persp_i).
+// segment_log2_i, kim_pipelined_i, density_log2_i, correction_i, persp_i,
+// quadratic_i).
 struct DesignSelect {
   int kind = 0;          // Design::Kind
   int segment_log2 = 0;  // affine-subN: log2 N; plain affine and the others: 0
@@ -41,6 +45,7 @@ struct DesignSelect {
   int density_log2 = 0;  // constant-depth lines per pixel m = 2^density_log2
   bool correction = false;
   bool persp = false;
+  bool quadratic = false;  // affine-subN: quadratic segments (quad-subN)
 };
 inline int log2_ceil(int value) {
   int bits = 0;
@@ -55,6 +60,7 @@ inline DesignSelect design_select(const Design& d) {
   s.density_log2 = log2_ceil(d.density);
   s.correction = d.correction;
   s.persp = d.persp;
+  s.quadratic = d.quadratic;
   return s;
 }
 

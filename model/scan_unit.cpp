@@ -188,6 +188,26 @@ TriangleRecord ScanUnit::run_affine(const UnitTriangle& triangle, const Setup& s
     const auto exact_at = [&](int64_t minor) {
       return divide_uv(s, offset, minor - s.minor_lo, widths_, exact_format, &record.flags);
     };
+    const auto emit = [&](int64_t minor, const CorrectedValue& value) {
+      fragments->push_back(make_fragment(s, c, minor, value));
+      record.flags |= fragments->back().flags;
+      ++record.pixels;
+    };
+    if (design_.quadratic) {
+      // Segments of power-of-two length, exact at both ends and the middle.
+      CorrectedValue start = exact_at(c.span.lo);
+      if (length == 1) emit(c.span.lo, quadratic_segment(start, start, start, 1, 0, widths_));
+      for (int64_t first = c.span.lo; first < c.span.hi;) {
+        const int64_t run = quadratic_segment_length(c.span.hi - first, segment);
+        const CorrectedValue middle = run > 1 ? exact_at(first + run / 2) : start;
+        const CorrectedValue end = exact_at(first + run);
+        const int64_t stop = first + run == c.span.hi ? run : run - 1;  // the span's final pixel too
+        for (int64_t p = 0; p <= stop; ++p) emit(first + p, quadratic_segment(start, middle, end, run, p, widths_));
+        first += run;
+        start = end;
+      }
+      continue;
+    }
     CorrectedValue start = exact_at(c.span.lo);
     for (int64_t first = c.span.lo; first <= c.span.hi; first += segment) {
       const int64_t last = std::min(first + segment, c.span.hi);
@@ -195,14 +215,9 @@ TriangleRecord ScanUnit::run_affine(const UnitTriangle& triangle, const Setup& s
       const CorrectedValue end = run > 0 ? exact_at(last) : start;
       // Pixels first .. last-1 (and the span's final pixel itself).
       const int64_t stop = last == c.span.hi ? last : last - 1;
-      for (int64_t minor = first; minor <= stop; ++minor) {
-        const CorrectedValue value =
-            run > 0 ? interpolate_segment(start, end, run, minor - first, widths_)
-                    : interpolate_segment(start, start, 1, 0, widths_);
-        fragments->push_back(make_fragment(s, c, minor, value));
-        record.flags |= fragments->back().flags;
-        ++record.pixels;
-      }
+      for (int64_t minor = first; minor <= stop; ++minor)
+        emit(minor, run > 0 ? interpolate_segment(start, end, run, minor - first, widths_)
+                            : interpolate_segment(start, start, 1, 0, widths_));
       if (last == c.span.hi) break;
       start = end;
     }

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <numeric>
 
+#include "affine_datapath.hpp"
 #include "derived_widths.hpp"
 #include "kim_datapath.hpp"
 
@@ -234,6 +235,30 @@ int64_t UnitTiming::walk_kim(const TriangleWork& work) const {
   return std::max(next_cycle, last_fragment + 1);
 }
 
+// quad-subN (rtl/quad_sub_datapath.sv): the cycles after a span's column cycle
+// up to its last pixel's. Counting from the column cycle (0), which issues the
+// exact point at the span's first pixel: the points are issued in order, one
+// per cycle, a segment's (its middle, then its end) no earlier than the cycle
+// the segment before it takes its first pixel; a point arrives recip_latency
+// cycles after its issue, and a segment's pixels, one per cycle, wait for its
+// end point.
+int64_t quadratic_span_cycles(int64_t span, int64_t segment, int64_t latency) {
+  const int64_t last = span - 1;
+  int64_t issued = 0, allowed = 0, taken = 0;
+  if (last == 0) return std::max<int64_t>(1, latency);
+  for (int64_t first = 0; first < last;) {
+    const int64_t run = quadratic_segment_length(last - first, segment);
+    if (run > 1) issued = std::max(issued + 1, allowed);  // the middle
+    issued = std::max(issued + 1, allowed);               // the end
+    const int64_t pixels = first + run == last ? run + 1 : run;
+    const int64_t first_take = std::max(taken + 1, issued + latency);
+    allowed = first_take;
+    taken = first_take + pixels - 1;
+    first += run;
+  }
+  return taken;
+}
+
 // Plain affine: the pass over the columns (pass_cycles). Subdivided
 // (affine-subN): one cycle per column and per pixel, and a span waits
 // recip_latency cycles for its first two end points (issued in the column
@@ -243,6 +268,12 @@ int64_t UnitTiming::walk_kim(const TriangleWork& work) const {
 int64_t UnitTiming::walk_affine(const TriangleWork& work) const {
   const int64_t segment = design_.subdivision;
   if (segment == 0) return pass_cycles(work.column_pixels.begin(), work.column_pixels.end());
+  if (design_.quadratic) {
+    int64_t cycles = work.columns;
+    for (const int32_t span : work.column_pixels)
+      if (span > 0) cycles += quadratic_span_cycles(span, segment, widths_.recip_latency);
+    return cycles;
+  }
   int64_t cycles = work.columns;
   for (const int32_t span : work.column_pixels) {
     if (span == 0) continue;

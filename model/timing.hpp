@@ -177,4 +177,8 @@ class UnitSchedule {
   ScheduledTriangle last_;
 };
 
+// quad-subN: the cycle of a span's last pixel, counted from its column cycle
+// (0), without back-pressure (model/timing.cpp).
+int64_t quadratic_span_cycles(int64_t span, int64_t segment, int64_t latency);
+
 }  // namespace cdsim

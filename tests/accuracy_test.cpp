@@ -3,6 +3,7 @@
 // version of the same algorithm, and `divide` with the exact reference.
 #include <gtest/gtest.h>
 
+#include "affine_datapath.hpp"
 #include "test_support.hpp"
 
 namespace cdsim {
@@ -137,6 +138,80 @@ TEST(Accuracy, SubdividedAffineIsExactAtSegmentEndsAndAffineBetween) {
       EXPECT_LE(std::abs(sub[i].v - exact[i].v), 1) << "triangle " << n << " pixel " << i;
     }
   }
+}
+
+TEST(Accuracy, QuadraticSegmentIsTheLagrangeQuadraticRoundedOnce) {
+  // The oracle: Lagrange's form through (0, a), (L/2, m), (L, b) times L^2,
+  //   a (L - 2p)(L - p) + 4 m p (L - p) + b p (2p - L),
+  // rounded to nearest (ties up) from s_frac + 2 log2 L fraction bits. The
+  // model evaluates the forward-difference form instead.
+  const Widths w = testing::wide_widths();
+  std::mt19937_64 rng(42);
+  const int64_t range = int64_t{1} << (w.out_int + w.s_frac - 3);  // no saturation
+  std::uniform_int_distribution<int64_t> value(-range, range);
+  for (int64_t length = 1; length <= 64; length *= 2) {
+    for (int n = 0; n < 200; ++n) {
+      CorrectedValue a, m, b;
+      a.u = value(rng), m.u = value(rng), b.u = value(rng);
+      a.v = value(rng) / 1024, m.v = a.v + value(rng) / 4096, b.v = m.v + value(rng) / 4096;
+      int log2_length_squared = 0;
+      while ((int64_t{1} << log2_length_squared) < length * length) ++log2_length_squared;
+      const int shift = log2_length_squared + w.s_frac - w.out_frac;
+      for (int64_t p = 0; p <= length; ++p) {
+        const auto lagrange = [&](int64_t fa, int64_t fm, int64_t fb) {
+          const fx::Wide L = length;
+          const fx::Wide scaled = fx::Wide{fa} * (L - 2 * p) * (L - p) + fx::Wide{fm} * 4 * p * (L - p) +
+                                  fx::Wide{fb} * p * (2 * p - L);
+          return static_cast<int64_t>((scaled + (fx::Wide{1} << (shift - 1))) >> shift);
+        };
+        const CorrectedValue q = quadratic_segment(a, m, b, length, p, w);
+        ASSERT_FALSE(q.saturated);
+        ASSERT_EQ(q.u, lagrange(a.u, m.u, b.u)) << "length " << length << " position " << p;
+        ASSERT_EQ(q.v, lagrange(a.v, m.v, b.v)) << "length " << length << " position " << p;
+      }
+    }
+  }
+}
+
+TEST(Accuracy, QuadraticSubdivisionIsExactAtItsPoints) {
+  // quad-sub16 equals divide at each segment's start, middle and end. The
+  // segments, written independently here: 16 pixels while 16 remain, then the
+  // remainder's binary digits from the highest (11 = 8 + 2 + 1).
+  const Widths w = testing::wide_widths();
+  std::mt19937_64 rng(16);
+  int64_t compared = 0;
+  for (int n = 0; n < 50; ++n) {
+    const ScreenTriangle s = testing::random_triangle(rng, kWidth, kHeight, 20.0, 500.0);
+    const UnitTriangle t = to_unit(s, w, size_t(n));
+    const auto quad = testing::run_unit(find_design("quad-sub16"), w, kWidth, kHeight, t);
+    const auto exact = testing::run_unit(find_design("divide"), w, kWidth, kHeight, t);
+    ASSERT_EQ(quad.size(), exact.size());
+    const ::cdsim::Setup setup = setup_engine(t, find_design("divide"), w, kWidth, kHeight);
+    size_t begin = 0;
+    while (begin < quad.size()) {
+      const auto major = [&](size_t i) { return setup.x_major ? quad[i].x : quad[i].y; };
+      size_t end = begin;
+      while (end < quad.size() && major(end) == major(begin)) ++end;
+      const int64_t last = int64_t(end - begin) - 1;
+      std::vector<int64_t> points = {0};
+      int64_t at = 0;
+      for (; last - at >= 16; at += 16) points.insert(points.end(), {at + 8, at + 16});
+      for (int64_t bit = 8; bit >= 1; bit /= 2) {
+        if (((last - at) & bit) == 0) continue;
+        if (bit > 1) points.push_back(at + bit / 2);
+        points.push_back(at += bit);
+      }
+      for (const int64_t p : points) {
+        const size_t i = begin + size_t(p);
+        // Both round the same exact value, from s_frac and from the reciprocal product.
+        EXPECT_LE(std::abs(quad[i].u - exact[i].u), 1) << "triangle " << n << " pixel " << i;
+        EXPECT_LE(std::abs(quad[i].v - exact[i].v), 1) << "triangle " << n << " pixel " << i;
+        ++compared;
+      }
+      begin = end;
+    }
+  }
+  EXPECT_GT(compared, 1000);
 }
 
 }  // namespace

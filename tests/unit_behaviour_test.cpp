@@ -483,6 +483,16 @@ TEST(UnitBehaviour, TimingLayerTurnsWorkIntoPhasesAndComputeSkipsIt) {
   w.recip_latency = 12;
   work.column_pixels = {1, 9, 10, 17};
   EXPECT_EQ(UnitTiming(find_design("affine-sub8"), w).phases(work).walk, 4 + 37 + 4 * 12 + 2 * 4);
+  // quad-sub16 with a 4-cycle divider, counted by hand from each column cycle
+  // (0, which issues the first point): a 1-pixel span takes its pixel when the
+  // point arrives (4). A 2-pixel span issues its end in 1 and takes its pixels
+  // in 5, 6. A 4-pixel span is segments of 2 and 1: points at 1, 2 (arriving
+  // 6), pixels in 6, 7; the second segment's end is issued when the first takes
+  // its first pixel (6), so its pixels come in 10, 11. A 17-pixel span is one
+  // 16-pixel segment: middle and end issued in 1, 2, pixels in 6 .. 22.
+  w.recip_latency = 4;
+  work.column_pixels = {1, 2, 4, 17};
+  EXPECT_EQ(UnitTiming(find_design("quad-sub16"), w).phases(work).walk, 4 + 4 + 6 + 11 + 22);
   // A triangle that ends after setup.
   EXPECT_EQ(UnitTiming(find_design("kim-pipe"), w).phases(TriangleWork{}).kind, TrianglePhases::Kind::Empty);
 
