@@ -166,12 +166,12 @@ UnitConfig prepare_unit(const Design& design, const Widths& widths, const AreaOp
   // The unit elaborated with this design's hardware only (rtl/cd_scan_unit.sv).
   c.has_table = design.kind == Design::Kind::ConstantDepth;
   const bool has_divide = design.kind == Design::Kind::Divide;
-  const bool has_affine_sub = design.kind == Design::Kind::Affine && design.subdivision != 0;
+  const bool has_sub = design.kind == Design::Kind::Affine && design.subdivision != 0;
   // The reciprocal, reported on its own, is the fill's (in the setup engine)
-  // in the table designs, the pixels' (in pixel_divide) in divide and the end
-  // points' in affine-subN.
+  // in the table designs, the pixels' (in pixel_divide) in divide and the
+  // exact points' in affine-subN and quad-subN.
   c.reciprocal_owner = c.has_table ? "setup_engine" : has_divide ? "pixel_divide"
-                       : has_affine_sub ? "affine_sub_datapath" : "";
+                       : has_sub ? "exact_points" : "";
   std::string parameters;
   for (const UnitParameter& p : unit_parameters({&design}))
     parameters += fmt::format("-set {} {} ", p.name, p.value);
@@ -231,6 +231,7 @@ nlohmann::json block_areas(const std::map<std::string, ModuleStat>& unit, const 
       {"correction_adder", "correction adder"}, {"plane_accumulator", "plane accumulators"},
       {"pixel_divide", "pixel multiply"},   {"affine_setup", "affine setup"},
       {"shift_round", "output rounding"},   {"affine_sub_datapath", "subdivision datapath"},
+      {"quad_sub_datapath", "subdivision datapath"}, {"exact_points", "exact points"},
       {"kim_datapath", "Kim datapath"},     {"context_register", "contexts"}};
   std::vector<std::string> order;
   std::map<std::string, Subtree> totals;

@@ -37,8 +37,8 @@ bool has_rtl(const Design& design) {
   switch (design.kind) {
     case Design::Kind::ConstantDepth:
     case Design::Kind::Divide:
-    case Design::Kind::Kim: return true;
-    case Design::Kind::Affine: return !design.quadratic;
+    case Design::Kind::Kim:
+    case Design::Kind::Affine: return true;
   }
   return false;
 }
@@ -74,7 +74,7 @@ std::vector<UnitParameter> unit_parameters(const std::vector<const Design*>& des
         break;
     }
   }
-  if (!affine_sub && !quad_sub) segment_log2 = 4;  // the unit's default; nothing uses it
+  if (!affine_sub && !quad_sub) segment_log2 = 5;  // the unit's default; nothing uses it
   return {{"MaxDensityLog2", density_log2}, {"HasCorrection", correction}, {"HasPersp", persp},
           {"HasTable", table},              {"HasDivide", divide},
           {"HasAffine", affine},            {"HasAffineSub", affine_sub},

@@ -1,14 +1,14 @@
 // affine-subN's per-span datapath (Quake-style subdivision): the exact u, v
-// (pixel_divide into t_int.s_frac) at the span's first pixel, every N-th pixel
-// and the last pixel, and between two end points a, b the affine values
+// (rtl/exact_points.sv, into t_int.s_frac) at the span's first pixel, every
+// N-th pixel and the last pixel, and between two end points a, b the affine values
 // a + p round((b - a) / run), p = 0 .. run - 1 (and the last pixel itself in
 // the span's final segment). Twin of run_affine and interpolate_segment
 // (model/scan_unit.cpp, model/affine_datapath.cpp).
 //
-// End points: an end-point plane accumulator per q, U, V. The first end point
-// is issued in the column cycle (span_i), the second in the next cycle; each
-// later one as the segment before its own starts (its first pixel taken). A
-// queue of three end points holds a segment's two and the one in flight; the
+// End points, by rtl/exact_points.sv, which this datapath drives (issue_o,
+// jump_o). The first end point is issued in the column cycle (span_i), the
+// second in the next cycle; each later one as the segment before its own
+// starts (its first pixel taken). A queue of three end points holds a segment's two and the one in flight; the
 // pipeline's result is usable in the cycle it arrives. valid_o is low while the
 // current segment's end point has not arrived: the span's first recip_latency
 // cycles, and max(0, recip_latency - N) cycles before each later segment.
@@ -19,8 +19,8 @@
 // Montgomery); a negative numerator takes -floor((|n| + d - 1) m / 2^K). The
 // sixteen m are elaboration constants (a ROM), one multiply per coordinate.
 //
-// hold_i (a fragment offered and not taken) freezes the divider pipeline and
-// everything else, so that a stall costs exactly one cycle.
+// hold_i (a fragment offered and not taken) freezes everything, the exact
+// points' pipeline too, so that a stall costs exactly one cycle.
 `include "cd_widths.svh"
 `default_nettype none
 
@@ -31,31 +31,23 @@ module affine_sub_datapath #(
   input  logic                                     rst_ni,
   input  logic                                     hold_i,
   input  logic [2:0]                               segment_log2_i,  // N = 2^segment_log2_i
-  // Columns, in step with the column walker.
-  input  logic                                     column_init_i,
-  input  logic                                     column_advance_i,
-  // The column cycle of a span with pixels: its first pixel (offset from
-  // minor_lo) and its length - 1.
+  // The column cycle of a span with pixels (which issues the exact point at
+  // its first pixel), and the span's length - 1.
   input  logic                                     span_i,
-  input  logic [`CD_PIXEL_BITS-1:0]                first_offset_i,
   input  logic [`CD_PIXEL_BITS-1:0]                span_last_i,
   input  logic                                     take_i,          // the pixel offered is taken
-  // Planes of q, U, V (setup engine).
-  input  logic signed [`CD_PLANE_REF_Q_BITS-1:0]   q_at_ref_i,
-  input  logic signed [`CD_PLANE_REF_UV_BITS-1:0]  u_at_ref_i,
-  input  logic signed [`CD_PLANE_REF_UV_BITS-1:0]  v_at_ref_i,
-  input  logic signed [`CD_PLANE_STEP_Q_BITS-1:0]  q_per_major_i,
-  input  logic signed [`CD_PLANE_STEP_UV_BITS-1:0] u_per_major_i,
-  input  logic signed [`CD_PLANE_STEP_UV_BITS-1:0] v_per_major_i,
-  input  logic signed [`CD_PLANE_STEP_Q_BITS-1:0]  q_per_minor_i,
-  input  logic signed [`CD_PLANE_STEP_UV_BITS-1:0] u_per_minor_i,
-  input  logic signed [`CD_PLANE_STEP_UV_BITS-1:0] v_per_minor_i,
+  // The exact points (rtl/exact_points.sv): this datapath issues them.
+  output logic                                     issue_o,         // a point after the span's first
+  output logic [MaxSegmentLog2:0]                  jump_o,          // pixels after the point before
+  input  logic                                     point_valid_i,
+  input  logic signed [`CD_AFFINE_REF_BITS-1:0]    point_u_i,
+  input  logic signed [`CD_AFFINE_REF_BITS-1:0]    point_v_i,
+  input  logic                                     point_saturated_i,
   // The current pixel.
   output logic                                     valid_o,
   output logic signed [`CD_OUT_BITS-1:0]           u_o,
   output logic signed [`CD_OUT_BITS-1:0]           v_o,
-  output logic                                     saturated_o,
-  output logic                                     depth_out_o   // an end point had q <= 0
+  output logic                                     saturated_o
 );
 
   localparam int PixelBits = `CD_PIXEL_BITS;
@@ -81,9 +73,6 @@ module affine_sub_datapath #(
 
   assign segment = PixelBits'(1) << segment_log2_i;
 
-  logic signed [`CD_PIXEL_Q_BITS-1:0]  q_point, q_first, q_next;
-  logic signed [`CD_PIXEL_UV_BITS-1:0] u_point, v_point, u_first, v_first, u_next, v_next;
-
   always_comb begin
     // The next end point: a segment on, or the span's last pixel.
     left = span_last_q - issued_q;
@@ -95,68 +84,8 @@ module affine_sub_datapath #(
       else if (take_i && pixel_q == seg_first_q && issued_q != span_last_q) issue = 1'b1;
     end
   end
-
-  // start_i loads the span's first pixel (the first end point); step_i jumps to
-  // the next. Only start_value_o and next_value_o are used (the point issued).
-  /* verilator lint_off PINCONNECTEMPTY */
-  plane_accumulator #(
-    .RefBits(`CD_PLANE_REF_Q_BITS), .StepBits(`CD_PLANE_STEP_Q_BITS), .AccBits(`CD_PIXEL_Q_BITS),
-    .JumpBits(JumpBits)
-  ) u_point_q (
-    .clk_i, .init_i(column_init_i), .advance_i(column_advance_i),
-    .start_i(span_i && !hold_i), .step_i(issue && !span_i), .first_offset_i, .jump_i(jump),
-    .at_ref_i(q_at_ref_i), .per_major_i(q_per_major_i), .per_minor_i(q_per_minor_i),
-    .start_value_o(q_first), .next_value_o(q_next), .value_o()
-  );
-  plane_accumulator #(
-    .RefBits(`CD_PLANE_REF_UV_BITS), .StepBits(`CD_PLANE_STEP_UV_BITS), .AccBits(`CD_PIXEL_UV_BITS),
-    .JumpBits(JumpBits)
-  ) u_point_u (
-    .clk_i, .init_i(column_init_i), .advance_i(column_advance_i),
-    .start_i(span_i && !hold_i), .step_i(issue && !span_i), .first_offset_i, .jump_i(jump),
-    .at_ref_i(u_at_ref_i), .per_major_i(u_per_major_i), .per_minor_i(u_per_minor_i),
-    .start_value_o(u_first), .next_value_o(u_next), .value_o()
-  );
-  plane_accumulator #(
-    .RefBits(`CD_PLANE_REF_UV_BITS), .StepBits(`CD_PLANE_STEP_UV_BITS), .AccBits(`CD_PIXEL_UV_BITS),
-    .JumpBits(JumpBits)
-  ) u_point_v (
-    .clk_i, .init_i(column_init_i), .advance_i(column_advance_i),
-    .start_i(span_i && !hold_i), .step_i(issue && !span_i), .first_offset_i, .jump_i(jump),
-    .at_ref_i(v_at_ref_i), .per_major_i(v_per_major_i), .per_minor_i(v_per_minor_i),
-    .start_value_o(v_first), .next_value_o(v_next), .value_o()
-  );
-
-  // The point issued: the span's first pixel in the column cycle, else the
-  // accumulator one jump on (the value it is about to load).
-  /* verilator lint_on PINCONNECTEMPTY */
-  assign q_point = span_i ? q_first : q_next;
-  assign u_point = span_i ? u_first : u_next;
-  assign v_point = span_i ? v_first : v_next;
-
-  logic                      point_valid, point_saturated, point_depth;
-  logic signed [RefBits-1:0] point_u, point_v;
-
-  /* verilator lint_off PINCONNECTEMPTY */
-  pixel_divide #(
-    .OutBits(RefBits), .OutFrac(SFrac), .TagBits(1)
-  ) u_pixel_divide (
-    .clk_i, .rst_ni,
-    .advance_i   (!hold_i),
-    .valid_i     (issue),
-    .q_i         (q_point),
-    .u_i         (u_point),
-    .v_i         (v_point),
-    .tag_i       (1'b0),
-    .valid_o     (point_valid),
-    .u_o         (point_u),
-    .v_o         (point_v),
-    .saturated_o (point_saturated),
-    .depth_out_o (point_depth),
-    .tag_o       ()
-  );
-  /* verilator lint_on PINCONNECTEMPTY */
-  assign depth_out_o = point_valid && !hold_i && point_depth;
+  assign issue_o = issue && !span_i;
+  assign jump_o = jump;
 
   // ---------------------------------------------------------------- queue
   // Entries 0 and 1: the current segment's start and end; 2: the next end.
@@ -165,11 +94,11 @@ module affine_sub_datapath #(
   logic [EntryBits-1:0] arriving, start_entry, end_entry;
   logic                 arrives, segment_done;
 
-  assign arriving = {point_saturated, point_u, point_v};
-  assign arrives = point_valid && !hold_i;
+  assign arriving = {point_saturated_i, point_u_i, point_v_i};
+  assign arrives = point_valid_i && !hold_i;
   assign start_entry = queue_q[0];
   assign end_entry = count_q >= 2'd2 ? queue_q[1] : arriving;
-  assign valid_o = count_q >= 2'd2 || (count_q == 2'd1 && point_valid);
+  assign valid_o = count_q >= 2'd2 || (count_q == 2'd1 && point_valid_i);
 
   // A segment ends at the pixel before its end point, but the span's final
   // segment includes its last pixel.

@@ -54,7 +54,11 @@ module cd_scan_unit #(
   // affine-subN: exact end points every N pixels (rtl/affine_sub_datapath.sv),
   // N up to 2^MaxSegmentLog2.
   parameter bit HasAffineSub = 1'b1,
-  parameter int MaxSegmentLog2 = 4,
+  // quad-subN: exact points at each segment's start, middle and end, the
+  // quadratic between (rtl/quad_sub_datapath.sv). It shares the exact points
+  // (rtl/exact_points.sv) with affine-subN.
+  parameter bit HasQuadSub = 1'b1,
+  parameter int MaxSegmentLog2 = 5,
   // kim-iter and kim-pipe (rtl/kim_datapath.sv): the span division and unit
   // steps with three plane accumulators, and an iterative or a pipelined
   // fraction stage (either present alone is one design; both share the rest).
@@ -96,6 +100,7 @@ module cd_scan_unit #(
   input  logic [1:0]  density_log2_i,     // m = 1, 2, 4
   input  logic        correction_i,
   input  logic        persp_i,            // cd-persp: the perspective-correct weight
+  input  logic        quadratic_i,        // subdivided affine kind: quad-subN (else affine-subN)
 
   // Fragment: pixel x, y; u, v sign-extended from OutInt.OutFrac; flags.
   output logic        frag_valid_o,
@@ -169,10 +174,11 @@ module cd_scan_unit #(
   localparam logic [1:0] KindKim    = 2'd2;
   localparam logic [1:0] KindAffine = 2'd3;
   localparam bit HasKim = HasKimIter || HasKimPipe;
+  localparam bit HasSub = HasAffineSub || HasQuadSub;  // the subdivided designs
   localparam int Datapaths = (HasTable ? 1 : 0) + (HasDivide ? 1 : 0) + (HasAffine ? 1 : 0) +
-                             (HasAffineSub ? 1 : 0) + (HasKim ? 1 : 0);
+                             (HasSub ? 1 : 0) + (HasKim ? 1 : 0);
   if (Datapaths == 0) begin : gen_no_datapath
-    $error("cd_scan_unit needs at least one datapath (HasTable, HasDivide, HasAffine, HasAffineSub, HasKimIter, HasKimPipe)");
+    $error("cd_scan_unit needs at least one datapath (HasTable, HasDivide, HasAffine, HasAffineSub, HasQuadSub, HasKimIter, HasKimPipe)");
   end
 
   localparam int TableBanks   = `CD_TABLE_BANKS;
@@ -208,6 +214,7 @@ module cd_scan_unit #(
   logic [1:0]  f_density_log2_d, f_density_log2_q;
   logic        f_correction_d, f_correction_q;
   logic        f_persp_d, f_persp_q;
+  logic        f_quadratic_d, f_quadratic_q;
   logic        f_per_pixel;                      // the front's triangle: a per-pixel design
   logic        f_mode_affine;                    // the front's triangle: affine (its own setup)
 
@@ -239,7 +246,8 @@ module cd_scan_unit #(
   logic        stage_busy;
   logic [1:0]  p_kind;
   logic [2:0]  p_segment_log2;
-  logic        p_kim_pipelined, p_correction, p_persp, p_empty, p_bands, p_per_pixel;
+  logic        p_kim_pipelined, p_correction, p_persp, p_quadratic, p_empty, p_bands,
+               p_per_pixel;
   logic [1:0]  p_density_log2;
   logic [7:0]  p_flags;
 
@@ -254,6 +262,7 @@ module cd_scan_unit #(
   logic [1:0]  b_density_log2_d, b_density_log2_q, density_log2_q;
   logic        b_correction_d, b_correction_q, correction_q;
   logic        b_persp_d, b_persp_q, persp_q;
+  logic        b_quadratic_d, b_quadratic_q, quadratic_q;
   logic signed [LineBits-1:0] band_lo_d, band_lo_q, band_hi_d, band_hi_q;
   logic signed [BandBits-1:0] band_lines_d, band_lines_q;  // the band walked, guards included
   logic [PixelBits-1:0] offset_d, offset_q;                 // the walker's column offset o
@@ -330,7 +339,7 @@ module cd_scan_unit #(
     assign pixel_line_hi = s_pixel_line_hi;
   end
 
-  if (HasDivide || HasAffineSub || HasKim) begin : gen_plane_context
+  if (HasDivide || HasSub || HasKim) begin : gen_plane_context
     localparam int Bits = `CD_PLANE_REF_Q_BITS + 2 * `CD_PLANE_REF_UV_BITS + 2 * `CD_PLANE_STEP_Q_BITS +
                           4 * `CD_PLANE_STEP_UV_BITS;
     logic [Bits-1:0] p_planes;
@@ -350,8 +359,8 @@ module cd_scan_unit #(
   end
 
   setup_engine #(
-    .HasLines(HasTable), .HasPixelPlanes(HasDivide || HasAffineSub || HasKim),
-    .HasPlanes(HasTable || HasDivide || HasAffineSub || HasKim), .SramDepth(SramDepth),
+    .HasLines(HasTable), .HasPixelPlanes(HasDivide || HasSub || HasKim),
+    .HasPlanes(HasTable || HasDivide || HasSub || HasKim), .SramDepth(SramDepth),
     .FillContext(FifoDepth > 1), .HasPersp(Persp)
   ) u_setup_engine (
     .clk_i,
@@ -679,24 +688,34 @@ module cd_scan_unit #(
   end
   /* verilator lint_on PINCONNECTEMPTY */
 
-  // affine-subN: end points every 2^segment_log2 pixels, affine between.
+  // affine-subN and quad-subN: exact points (one shared exact_points) every
+  // 2^segment_log2 pixels, affine or quadratic between.
   logic                      sub_valid, sub_saturated, sub_depth_out, sub_hold;
   logic signed [OutBits-1:0] sub_u, sub_v;
   assign sub_hold = hold;
 
-  if (HasAffineSub) begin : gen_affine_sub
-    affine_sub_datapath #(
-      .MaxSegmentLog2(MaxSegmentLog2)
-    ) u_affine_sub (
+  if (HasSub) begin : gen_sub
+    localparam int JumpBits = MaxSegmentLog2 + 1;
+    logic                      quad, span, take_sub;
+    logic                      point_valid, point_saturated;
+    logic signed [`CD_AFFINE_REF_BITS-1:0] point_u, point_v;
+    logic                      lin_issue, quad_issue, lin_valid, quad_valid, lin_saturated, quad_saturated;
+    logic [JumpBits-1:0]       lin_jump, quad_jump;
+    logic signed [OutBits-1:0] lin_u, lin_v, quad_u, quad_v;
+
+    assign quad = HasQuadSub && (!HasAffineSub || quadratic_q);
+    assign span = plane_start && mode_sub;
+    assign take_sub = mode_sub && state_q == StPixel && sub_valid && frag_ready_i;
+
+    exact_points #(.JumpBits(JumpBits)) u_exact_points (
       .clk_i, .rst_ni,
       .hold_i           (sub_hold),
-      .segment_log2_i   (segment_log2_q),
       .column_init_i    (column_init && mode_sub),
       .column_advance_i (column_advance && mode_sub),
-      .span_i           (plane_start && mode_sub),
+      .span_i           (span),
       .first_offset_i   (column_first - minor_lo),
-      .span_last_i      (column_last - column_first),
-      .take_i           (mode_sub && state_q == StPixel && sub_valid && frag_ready_i),
+      .issue_i          (quad ? quad_issue : lin_issue),
+      .jump_i           (quad ? quad_jump : lin_jump),
       .q_at_ref_i       (q_at_ref),
       .u_at_ref_i       (u_at_ref),
       .v_at_ref_i       (v_at_ref),
@@ -706,15 +725,70 @@ module cd_scan_unit #(
       .q_per_minor_i    (q_per_minor),
       .u_per_minor_i    (u_per_minor),
       .v_per_minor_i    (v_per_minor),
-      .valid_o          (sub_valid),
-      .u_o              (sub_u),
-      .v_o              (sub_v),
-      .saturated_o      (sub_saturated),
+      .valid_o          (point_valid),
+      .u_o              (point_u),
+      .v_o              (point_v),
+      .saturated_o      (point_saturated),
       .depth_out_o      (sub_depth_out)
     );
-  end else begin : gen_no_affine_sub
-    logic unused_sub_hold;
-    assign unused_sub_hold = sub_hold;
+
+    if (HasAffineSub) begin : gen_affine_sub
+      affine_sub_datapath #(
+        .MaxSegmentLog2(MaxSegmentLog2)
+      ) u_affine_sub (
+        .clk_i, .rst_ni,
+        .hold_i            (sub_hold),
+        .segment_log2_i    (segment_log2_q),
+        .span_i            (span && !quad),
+        .span_last_i       (column_last - column_first),
+        .take_i            (take_sub && !quad),
+        .issue_o           (lin_issue),
+        .jump_o            (lin_jump),
+        .point_valid_i     (point_valid && !quad),
+        .point_u_i         (point_u),
+        .point_v_i         (point_v),
+        .point_saturated_i (point_saturated),
+        .valid_o           (lin_valid),
+        .u_o               (lin_u),
+        .v_o               (lin_v),
+        .saturated_o       (lin_saturated)
+      );
+    end else begin : gen_no_affine_sub
+      assign {lin_issue, lin_jump, lin_valid, lin_u, lin_v, lin_saturated} = '0;
+    end
+
+    if (HasQuadSub) begin : gen_quad_sub
+      quad_sub_datapath #(
+        .MaxSegmentLog2(MaxSegmentLog2)
+      ) u_quad_sub (
+        .clk_i, .rst_ni,
+        .hold_i            (sub_hold),
+        .segment_log2_i    (segment_log2_q),
+        .span_i            (span && quad),
+        .span_last_i       (column_last - column_first),
+        .take_i            (take_sub && quad),
+        .issue_o           (quad_issue),
+        .jump_o            (quad_jump),
+        .point_valid_i     (point_valid && quad),
+        .point_u_i         (point_u),
+        .point_v_i         (point_v),
+        .point_saturated_i (point_saturated),
+        .valid_o           (quad_valid),
+        .u_o               (quad_u),
+        .v_o               (quad_v),
+        .saturated_o       (quad_saturated)
+      );
+    end else begin : gen_no_quad_sub
+      assign {quad_issue, quad_jump, quad_valid, quad_u, quad_v, quad_saturated} = '0;
+    end
+
+    assign sub_valid = quad ? quad_valid : lin_valid;
+    assign sub_u = quad ? quad_u : lin_u;
+    assign sub_v = quad ? quad_v : lin_v;
+    assign sub_saturated = quad ? quad_saturated : lin_saturated;
+  end else begin : gen_no_sub
+    logic unused_sub;
+    assign unused_sub = ^{sub_hold, quadratic_q};
     assign sub_valid = 1'b0;
     assign sub_u = '0;
     assign sub_v = '0;
@@ -845,7 +919,7 @@ module cd_scan_unit #(
   function automatic logic [3:0] modes_of(input logic [1:0] kind, input logic [2:0] segment_log2);
     modes_of = {HasDivide && (Datapaths == 1 || kind == KindDivide),
                 HasAffine && (Datapaths == 1 || (kind == KindAffine && segment_log2 == '0)),
-                HasAffineSub && (Datapaths == 1 || (kind == KindAffine && segment_log2 != '0)),
+                HasSub && (Datapaths == 1 || (kind == KindAffine && segment_log2 != '0)),
                 HasKim && (Datapaths == 1 || kind == KindKim)};
   endfunction
   logic [3:0] f_modes;
@@ -857,14 +931,14 @@ module cd_scan_unit #(
 
   // What the back needs to know of a triangle as it takes it: through the fill
   // stage with FifoDepth = 2, else straight from the front.
-  localparam int JobBits = 2 + 3 + 1 + 2 + 1 + 1 + 3 + 8;
+  localparam int JobBits = 2 + 3 + 1 + 2 + 1 + 1 + 1 + 3 + 8;
   logic [JobBits-1:0] p_job;
   context_register #(.Bits(JobBits), .Present(FillStage)) u_job_stage (
     .clk_i, .load_i(to_stage),
-    .d_i({f_kind_q, f_segment_log2_q, f_kim_pipelined_q, f_density_log2_q, f_correction_q, f_persp_q, setup_empty,
+    .d_i({f_kind_q, f_segment_log2_q, f_kim_pipelined_q, f_density_log2_q, f_correction_q, f_persp_q, f_quadratic_q, setup_empty,
           s_job_bands, f_per_pixel, setup_empty ? 8'd0 : setup_flags}),
     .q_o(p_job));
-  assign {p_kind, p_segment_log2, p_kim_pipelined, p_density_log2, p_correction, p_persp, p_empty, p_bands, p_per_pixel,
+  assign {p_kind, p_segment_log2, p_kim_pipelined, p_density_log2, p_correction, p_persp, p_quadratic, p_empty, p_bands, p_per_pixel,
           p_flags} = p_job;
 
   // The back's triangle: its own copy with FifoDepth >= 1, else the front's.
@@ -874,6 +948,7 @@ module cd_scan_unit #(
   assign density_log2_q = FifoDepth > 0 ? b_density_log2_q : f_density_log2_q;
   assign correction_q = FifoDepth > 0 ? b_correction_q : f_correction_q;
   assign persp_q = FifoDepth > 0 ? b_persp_q : f_persp_q;
+  assign quadratic_q = FifoDepth > 0 ? b_quadratic_q : f_quadratic_q;
   assign {mode_divide, mode_affine, mode_sub, mode_kim} = modes_of(kind_q, segment_log2_q);
   assign per_pixel = mode_divide || mode_affine || mode_sub || mode_kim;
 
@@ -979,6 +1054,7 @@ module cd_scan_unit #(
     f_density_log2_d = f_density_log2_q;
     f_correction_d = f_correction_q;
     f_persp_d = f_persp_q;
+    f_quadratic_d = f_quadratic_q;
 
     unique case (front_q)
       FrIdle, FrOffer: ;
@@ -1003,6 +1079,7 @@ module cd_scan_unit #(
       f_density_log2_d = density_log2_i;
       f_correction_d = correction_i && HasCorrection;
       f_persp_d = persp_i && Persp;
+      f_quadratic_d = quadratic_i && HasQuadSub;
     end
   end
 
@@ -1078,6 +1155,7 @@ module cd_scan_unit #(
     b_density_log2_d = b_density_log2_q;
     b_correction_d = b_correction_q;
     b_persp_d = b_persp_q;
+    b_quadratic_d = b_quadratic_q;
     band_lo_d = band_lo_q;
     band_hi_d = band_hi_q;
     band_lines_d = band_lines_q;
@@ -1252,6 +1330,7 @@ module cd_scan_unit #(
       b_density_log2_d = p_density_log2;
       b_correction_d = p_correction;
       b_persp_d = p_persp;
+      b_quadratic_d = p_quadratic;
       lines_d = '0;
       bands_d = '0;
       pixels_d = '0;
@@ -1372,6 +1451,7 @@ module cd_scan_unit #(
       f_density_log2_q <= '0;
       f_correction_q <= 1'b0;
       f_persp_q <= 1'b0;
+      f_quadratic_q <= 1'b0;
       fill_q <= FlIdle;
       fl_count_q <= '0;
       fl_band_lo_q <= '0;
@@ -1392,6 +1472,7 @@ module cd_scan_unit #(
       f_density_log2_q <= f_density_log2_d;
       f_correction_q <= f_correction_d;
       f_persp_q <= f_persp_d;
+      f_quadratic_q <= f_quadratic_d;
       fill_q <= fill_d;
       fl_count_q <= fl_count_d;
       fl_band_lo_q <= fl_band_lo_d;
@@ -1417,6 +1498,7 @@ module cd_scan_unit #(
       b_density_log2_q <= '0;
       b_correction_q <= 1'b0;
       b_persp_q <= 1'b0;
+      b_quadratic_q <= 1'b0;
       band_lo_q <= '0;
       band_hi_q <= '0;
       band_lines_q <= '0;
@@ -1442,6 +1524,7 @@ module cd_scan_unit #(
       b_density_log2_q <= b_density_log2_d;
       b_correction_q <= b_correction_d;
       b_persp_q <= b_persp_d;
+      b_quadratic_q <= b_quadratic_d;
       band_lo_q <= band_lo_d;
       band_hi_q <= band_hi_d;
       band_lines_q <= band_lines_d;

@@ -97,6 +97,7 @@ class Bench : public sc_core::sc_module {
     dut.density_log2_i(density_log2);
     dut.correction_i(correction);
     dut.persp_i(persp);
+    dut.quadratic_i(quadratic);
     dut.kim_pipelined_i(kim_pipelined);
     dut.frag_valid_o(frag_valid);
     dut.frag_ready_i(frag_ready);
@@ -202,6 +203,7 @@ class Bench : public sc_core::sc_module {
       density_log2.write(static_cast<uint32_t>(select.density_log2));
       correction.write(select.correction);
       persp.write(select.persp);
+      quadratic.write(select.quadratic);
       kim_pipelined.write(select.kim_pipelined);
       presenting_ = true;
       presented_ = next_job_++;
@@ -311,7 +313,7 @@ class Bench : public sc_core::sc_module {
   sc_core::sc_signal<bool> rst_n{"rst_n"}, tri_valid{"tri_valid"}, tri_ready{"tri_ready"};
   sc_core::sc_signal<uint32_t> tri_x[3], tri_y[3], tri_q[3], tri_u[3], tri_v[3];
   sc_core::sc_signal<uint32_t> viewport_width, viewport_height, kind, segment_log2, density_log2;
-  sc_core::sc_signal<bool> correction, persp, kim_pipelined, frag_valid, frag_ready, rec_valid, rec_ready;
+  sc_core::sc_signal<bool> correction, persp, quadratic, kim_pipelined, frag_valid, frag_ready, rec_valid, rec_ready;
   sc_core::sc_signal<uint32_t> frag_x, frag_y, frag_flags;
   sc_core::sc_signal<uint64_t> frag_u, frag_v, rec_cycles;
   sc_core::sc_signal<uint32_t> rec_lines, rec_bands, rec_pixels, rec_flags;

@@ -21,6 +21,7 @@ module cd_scan_cover (
   input logic [1:0] density_log2_q,
   input logic       correction_q,
   input logic       persp_q,
+  input logic       quadratic_q,
   input logic       frag_valid_o,
   input logic       frag_ready_i,
   input logic       rec_valid_o,
@@ -93,12 +94,15 @@ module cd_scan_cover (
   c_design_divide:           cover property (@(posedge clk_i) record && kind_q == 2'd1);
   c_design_kim_iter:         cover property (@(posedge clk_i) record && kind_q == 2'd2 && !kim_pipelined_q);
   c_design_kim_pipe:         cover property (@(posedge clk_i) record && kind_q == 2'd2 && kim_pipelined_q);
-  c_design_affine_sub16:     cover property (@(posedge clk_i) record && kind_q == 2'd3 && segment_log2_q == 3'd4);
-  c_design_affine_sub8:      cover property (@(posedge clk_i) record && kind_q == 2'd3 && segment_log2_q == 3'd3);
+  wire sub = record && kind_q == 2'd3;
+  c_design_affine_sub16:     cover property (@(posedge clk_i) sub && segment_log2_q == 3'd4 && !quadratic_q);
+  c_design_affine_sub8:      cover property (@(posedge clk_i) sub && segment_log2_q == 3'd3 && !quadratic_q);
+  c_design_quad_sub16:       cover property (@(posedge clk_i) sub && segment_log2_q == 3'd4 && quadratic_q);
+  c_design_quad_sub32:       cover property (@(posedge clk_i) sub && segment_log2_q == 3'd5 && quadratic_q);
   c_design_affine:           cover property (@(posedge clk_i) record && kind_q == 2'd3 && segment_log2_q == 3'd0);
 endmodule
 
 bind cd_scan_unit cd_scan_cover u_cover (
   .clk_i, .rst_ni, .state_q, .front_q, .fill_q, .full_q, .walk_bank_q, .take, .starve, .kind_q, .segment_log2_q, .kim_pipelined_q, .density_log2_q,
-  .correction_q, .persp_q, .frag_valid_o, .frag_ready_i, .rec_valid_o, .rec_ready_i, .rec_flags_o,
+  .correction_q, .persp_q, .quadratic_q, .frag_valid_o, .frag_ready_i, .rec_valid_o, .rec_ready_i, .rec_flags_o,
   .obs_setup_valid_o, .obs_setup_bits_o);

@@ -32,7 +32,7 @@ module cd_scan_vectors_tb;
   // The words of the files, most significant field first (sim/vectors.cpp).
   typedef struct packed {
     logic [3:0]  kind;
-    logic [3:0]  segment_log2;
+    logic [3:0]  segment_log2;  // {quadratic, segment_log2}
     logic [3:0]  kim_pipelined;
     logic [3:0]  density_log2;
     logic [3:0]  correction;  // {persp, correction}
@@ -109,6 +109,7 @@ module cd_scan_vectors_tb;
     .tri_u2_i(presented.u2), .tri_v2_i(presented.v2),
     .viewport_width_i(presented.viewport_width), .viewport_height_i(presented.viewport_height),
     .kind_i(presented.kind[1:0]), .segment_log2_i(presented.segment_log2[2:0]),
+    .quadratic_i(presented.segment_log2[3]),
     .kim_pipelined_i(presented.kim_pipelined[0]), .density_log2_i(presented.density_log2[1:0]),
     .correction_i(presented.correction[0]), .persp_i(presented.correction[1]),
     .frag_valid_o(frag_valid), .frag_ready_i(frag_ready),
