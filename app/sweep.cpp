@@ -61,7 +61,7 @@ std::vector<Config> product_configs(const std::vector<Design>& designs,
 }
 
 // The default sweep: for each design, one-dimensional sweeps of the widths
-// that decide its accuracy, around the defaults (328 configurations; 298 before quad-subN, 251 before cd-persp).
+// that decide its accuracy, around the defaults (343 configurations; 298 before quad-subN, 251 before cd-persp).
 std::vector<Config> default_configs() {
   const std::vector<SweepAxis> constant_depth = {
       {"g_frac", {6, 8, 10, 12, 14, 16, 18, 20}},

@@ -26,6 +26,8 @@ const std::vector<Design>& all_designs() {
       {"affine-sub8", K::Affine, 1, false, false, 8, "exact divide every 8 pixels, affine between"},
       {"quad-sub16", K::Affine, 1, false, false, 16,
        "exact divide at the start, middle and end of every 16-pixel segment, quadratic between", false, true},
+      {"quad-sub8", K::Affine, 1, false, false, 8,
+       "exact divide at the start, middle and end of every 8-pixel segment, quadratic between", false, true},
       {"quad-sub32", K::Affine, 1, false, false, 32,
        "exact divide at the start, middle and end of every 32-pixel segment, quadratic between", false, true},
       {"affine", K::Affine, 1, false, false, 0, "plain affine interpolation of u, v (not perspective-correct)"},

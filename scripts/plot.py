@@ -17,7 +17,7 @@ FAMILY_STYLE = {
     "cd-dense4": ("tab:red", "v"), "cd-dense2-linear": ("tab:purple", "D"), "divide": ("black", "x"),
     "kim-iter": ("tab:brown", "P"), "kim-pipe": ("tab:pink", "*"), "affine-sub16": ("tab:gray", "<"),
     "affine-sub8": ("tab:olive", ">"), "affine": ("tab:cyan", "h"), "cd-persp": ("gold", "d"),
-    "quad-sub16": ("darkviolet", "v"), "quad-sub32": ("teal", "^"),
+    "quad-sub16": ("darkviolet", "v"), "quad-sub8": ("sienna", "<"), "quad-sub32": ("teal", "^"),
 }
 NUMERIC = ["pixels", "cycles", "pixels_per_clock", "table_entries", "table_bits",
            "error_mean", "error_rms", "error_p99", "error_max", "footprint_max", "texel_mismatch",

@@ -14,7 +14,7 @@
 set -euo pipefail
 cdsim=$1 work=$2 cache=$3 min_lines=$4 scale=${5:-1}
 rm -rf "$work" && mkdir -p "$work/empty"
-fast=cd-none,cd-linear,cd-dense2,cd-dense4,cd-dense2-linear,cd-persp,divide,affine-sub16,affine-sub8,quad-sub16,quad-sub32,affine
+fast=cd-none,cd-linear,cd-dense2,cd-dense4,cd-dense2-linear,cd-persp,divide,affine-sub16,affine-sub8,quad-sub16,quad-sub8,quad-sub32,affine
 toggle=()
 ((scale > 1)) || toggle=(--no-toggle)
 run() { "$cdsim" regress --backpressure 0.3 --rtl-cache "$cache" --coverage "$work/cov" "${toggle[@]}" "$@" \
@@ -57,7 +57,7 @@ for p in ["c_state_" + s for s in ("idle", "fill_wait", "init", "column", "pixel
          (["c_front_fill_held"] if scale > 1 else []) + \
          ["c_design_" + s for s in ("cd_none", "cd_linear", "cd_dense2", "cd_dense4", "cd_dense2_linear", "divide",
                                     "kim_iter", "kim_pipe", "affine_sub16", "affine_sub8", "quad_sub16",
-                                    "quad_sub32", "affine", "cd_persp")] + \
+                                    "quad_sub8", "quad_sub32", "affine", "cd_persp")] + \
          ["c_fragment_stall", "c_flag_banded", "c_flag_table_saturated", "c_flag_output_saturated",
           "c_x_major", "c_y_major"]:
     expect(p not in uncovered, f"cover point {p} hit")

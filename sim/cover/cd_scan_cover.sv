@@ -98,6 +98,7 @@ module cd_scan_cover (
   c_design_affine_sub16:     cover property (@(posedge clk_i) sub && segment_log2_q == 3'd4 && !quadratic_q);
   c_design_affine_sub8:      cover property (@(posedge clk_i) sub && segment_log2_q == 3'd3 && !quadratic_q);
   c_design_quad_sub16:       cover property (@(posedge clk_i) sub && segment_log2_q == 3'd4 && quadratic_q);
+  c_design_quad_sub8:        cover property (@(posedge clk_i) sub && segment_log2_q == 3'd3 && quadratic_q);
   c_design_quad_sub32:       cover property (@(posedge clk_i) sub && segment_log2_q == 3'd5 && quadratic_q);
   c_design_affine:           cover property (@(posedge clk_i) record && kind_q == 2'd3 && segment_log2_q == 3'd0);
 endmodule
