@@ -485,10 +485,10 @@ int run_area_command(const AreaOptions& options) {
                                        "elaborated in {:.0f} s)", r.log_path, r.synthesis_seconds)
              : r.cached  ? fmt::format("cached (synthesised in {:.0f} s)", r.synthesis_seconds)
                          : fmt::format("synthesised in {:.0f} s", r.synthesis_seconds));
-  fmt::print("\n{:<18} {:>14} {:>11} {:>8}\n", "block", "area um^2", "NAND2-eq", "flops");
+  fmt::print("\n{:<20} {:>14} {:>11} {:>8}\n", "block", "area um^2", "NAND2-eq", "flops");
   for (const BlockArea& b : r.blocks)
-    fmt::print("{:<18} {:>14.0f} {:>11.0f} {:>8}\n", b.name, b.area_um2, b.nand2_eq, b.flops);
-  fmt::print("{:<18} {:>14.0f}\n", "logic total", r.logic_area_um2);
+    fmt::print("{:<20} {:>14.0f} {:>11.0f} {:>8}\n", b.name, b.area_um2, b.nand2_eq, b.flops);
+  fmt::print("{:<20} {:>14.0f}\n", "logic total", r.logic_area_um2);
   if (r.sram_bits == 0) {
     fmt::print("\nno scanline table\ntotal (logic): {:.0f} um^2\n", r.total_area_um2);
   } else {
