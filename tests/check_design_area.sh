@@ -9,17 +9,20 @@
 # affine has no table and no reciprocal at all, and its own setup; quad-sub8
 # has no table and no per-pixel multiply, and exact points (a reciprocal) and
 # its subdivision datapath.
-# Usage: check_design_area.sh CDSIM WORKDIR "NARROW SETTINGS"
+# quad-sub8 only with a fourth argument "long" (the long suite: CI's time).
+# Usage: check_design_area.sh CDSIM WORKDIR "NARROW SETTINGS" [long]
 set -euo pipefail
-cdsim=$1 work=$2 narrow=$3
+cdsim=$1 work=$2 narrow=$3 scope=${4:-ci}
 rm -rf "$work" && mkdir -p "$work"
 args=()
 for s in $narrow; do args+=(--set "$s"); done
-for d in cd-linear cd-persp divide affine quad-sub8; do
+designs=(cd-linear cd-persp divide affine)
+[[ $scope == long ]] && designs+=(quad-sub8)
+for d in "${designs[@]}"; do
   "$cdsim" area --design "$d" "${args[@]}" --cache "$work/cache" --json "$work/$d.json" >/dev/null
 done
 /usr/bin/python3 - "$work" <<'PY'
-import json, sys
+import json, os, sys
 work = sys.argv[1]
 failures = []
 def load(design):
@@ -32,9 +35,10 @@ cd, cd_blocks = load("cd-linear")
 cp, cp_blocks = load("cd-persp")
 dv, dv_blocks = load("divide")
 af, af_blocks = load("affine")
-qs, qs_blocks = load("quad-sub8")
+quad = os.path.exists(f"{work}/quad-sub8.json")
+qs, qs_blocks = load("quad-sub8") if quad else ({}, {})
 for name, (r, b) in {"cd-linear": (cd, cd_blocks), "cd-persp": (cp, cp_blocks), "divide": (dv, dv_blocks),
-                     "affine": (af, af_blocks), "quad-sub8": (qs, qs_blocks)}.items():
+                     "affine": (af, af_blocks), **({"quad-sub8": (qs, qs_blocks)} if quad else {})}.items():
     total = sum(b.values())
     expect(abs(total - r["logic_area_um2"]) <= 1e-6 * total, f"{name}: blocks sum to the logic area ({total:.0f} um^2)")
 expect(cd["sram_bits"] > 0, "cd-linear has a table")
@@ -53,12 +57,13 @@ expect(dv_blocks["setup engine"] < cd_blocks["setup engine"], "divide's setup en
 expect(af["sram_bits"] == 0, "affine has no table")
 expect(af_blocks.get("reciprocal", 0) == 0 and "pixel multiply" not in af_blocks, "affine has no reciprocal")
 expect(af_blocks.get("affine setup", 0) > 0 and af_blocks.get("plane accumulators", 0) > 0, "affine has its setup and accumulators")
-expect(qs["sram_bits"] == 0 and "correction adder" not in qs_blocks, "quad-sub8 has no table")
-expect(qs_blocks.get("exact points", 0) > 0 and qs_blocks.get("reciprocal", 0) > 0,
-       "quad-sub8 has exact points and their reciprocal")
-expect(qs_blocks.get("subdivision datapath", 0) > 0 and "pixel multiply" not in qs_blocks,
-       "quad-sub8 has its subdivision datapath and no per-pixel multiply")
-expect("plane accumulators" not in qs_blocks, "quad-sub8's point accumulators are in its exact points")
+if quad:
+    expect(qs["sram_bits"] == 0 and "correction adder" not in qs_blocks, "quad-sub8 has no table")
+    expect(qs_blocks.get("exact points", 0) > 0 and qs_blocks.get("reciprocal", 0) > 0,
+           "quad-sub8 has exact points and their reciprocal")
+    expect(qs_blocks.get("subdivision datapath", 0) > 0 and "pixel multiply" not in qs_blocks,
+           "quad-sub8 has its subdivision datapath and no per-pixel multiply")
+    expect("plane accumulators" not in qs_blocks, "quad-sub8's point accumulators are in its exact points")
 sys.exit(1 if failures else 0)
 PY
 echo PASS
