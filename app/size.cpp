@@ -34,6 +34,10 @@ std::vector<std::string> sized_parameters(const Design& d) {
     case Design::Kind::Affine:
       if (d.subdivision == 0) return {"t_int", "s_int", "s_frac"};
       return {"q_bits", "plane_bits", "recip_bits", "t_int", "s_frac"};
+    case Design::Kind::Adaptive:
+      // The bound costs cycles, not area: the loosest that meets the target.
+      return {"q_bits", "recip_bits", "adapt_depth", "adapt_uv_extra", "t_int", "s_int", "s_frac",
+              "adapt_bound_frac"};
   }
   return {};
 }
@@ -46,7 +50,8 @@ Widths widest(Widths w, const Design& design) {
   for (const auto& [name, value] : std::vector<std::pair<std::string, int>>{
            {"q_bits", 32}, {"plane_bits", 48}, {"g_frac", 30}, {"recip_bits", 32}, {"t_int", 20},
            {"t_frac", 24}, {"s_int", 20}, {"s_frac", 24}, {"d_frac", 24}, {"kim_frac", 16},
-           {"persp_table_log2", 8}, {"eps_int", 16}, {"eps_frac", 30}, {"persp_frac", 30}})
+           {"persp_table_log2", 8}, {"eps_int", 16}, {"eps_frac", 30}, {"persp_frac", 30},
+           {"adapt_depth", 3}, {"adapt_uv_extra", 4}, {"adapt_bound_frac", 12}})
     if (std::find(sized.begin(), sized.end(), name) != sized.end()) set_param(w, name, value);
   if (design.kind == Design::Kind::ConstantDepth) w.table_depth = 65536 / 4;  // no banding while sizing
   return w;

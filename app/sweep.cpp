@@ -61,7 +61,7 @@ std::vector<Config> product_configs(const std::vector<Design>& designs,
 }
 
 // The default sweep: for each design, one-dimensional sweeps of the widths
-// that decide its accuracy, around the defaults (343 configurations; 298 before quad-subN, 251 before cd-persp).
+// that decide its accuracy, around the defaults (352 configurations; 343 before adaptive, 298 before quad-subN, 251 before cd-persp).
 std::vector<Config> default_configs() {
   const std::vector<SweepAxis> constant_depth = {
       {"g_frac", {6, 8, 10, 12, 14, 16, 18, 20}},
@@ -80,6 +80,9 @@ std::vector<Config> default_configs() {
                                       {"kim_unroll", {1, 2, 4, 8}}};
   const std::vector<SweepAxis> affine = {{"s_frac", {8, 10, 12, 14, 16, 18, 20, 22, 24}},
                                          {"out_frac", {2, 4, 6, 8, 10, 12}}};
+  const std::vector<SweepAxis> adaptive = {{"adapt_bound_frac", {0, 2, 6, 8}},
+                                           {"adapt_depth", {0, 1, 2}},
+                                           {"adapt_uv_extra", {0, 2}}};
   std::vector<Config> configs;
   for (const Design& d : all_designs()) {
     std::vector<SweepAxis> axes;
@@ -95,6 +98,7 @@ std::vector<Config> default_configs() {
         continue;
       }
       case Design::Kind::Affine: axes = affine; break;
+      case Design::Kind::Adaptive: axes = adaptive; break;
     }
     for (const SweepAxis& axis : axes)
       for (int value : axis.values) {

@@ -30,6 +30,8 @@ const std::vector<Design>& all_designs() {
        "exact divide at the start, middle and end of every 8-pixel segment, quadratic between", false, true},
       {"quad-sub32", K::Affine, 1, false, false, 32,
        "exact divide at the start, middle and end of every 32-pixel segment, quadratic between", false, true},
+      {"adaptive", K::Adaptive, 1, false, false, 0,
+       "Kamen & Shirman: split in four at edge midpoints while the edge error exceeds a bound, affine per leaf"},
       {"affine", K::Affine, 1, false, false, 0, "plain affine interpolation of u, v (not perspective-correct)"},
   };
   return designs;
@@ -41,6 +43,7 @@ bool has_rtl(const Design& design) {
     case Design::Kind::Divide:
     case Design::Kind::Kim:
     case Design::Kind::Affine: return true;
+    case Design::Kind::Adaptive: return false;
   }
   return false;
 }
@@ -74,6 +77,7 @@ std::vector<UnitParameter> unit_parameters(const std::vector<const Design*>& des
           segment_log2 = std::max(segment_log2, log2_ceil(d->subdivision));
         }
         break;
+      case Design::Kind::Adaptive: affine = true; break;  // the unit behind its split engine
     }
   }
   if (!affine_sub && !quad_sub) segment_log2 = 5;  // the unit's default; nothing uses it

@@ -9,7 +9,8 @@ namespace cdsim {
 
 struct Design {
   // The values are the RTL's kind_i (rtl/cd_scan_unit.sv).
-  enum class Kind { ConstantDepth = 0, Divide = 1, Kim = 2, Affine = 3 };
+  // Adaptive has no RTL yet: a split engine in front of an affine unit.
+  enum class Kind { ConstantDepth = 0, Divide = 1, Kim = 2, Affine = 3, Adaptive = 4 };
   std::string name;
   Kind kind = Kind::ConstantDepth;
   int density = 1;          // constant-depth lines per pixel (method 1: 2, 4)

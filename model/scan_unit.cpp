@@ -5,6 +5,7 @@
 
 #include "column_walker.hpp"
 #include "correction_adder.hpp"
+#include "adaptive_split.hpp"
 #include "affine_datapath.hpp"
 #include "divide_datapath.hpp"
 #include "kim_datapath.hpp"
@@ -20,11 +21,16 @@ ScanUnit::ScanUnit(const Design& design, const Widths& widths, int viewport_widt
       viewport_height_(viewport_height),
       table_(widths.table_depth * design.density),
       timing_(design, widths),
-      schedule_(widths) {}
+      schedule_(widths) {
+  if (design.kind == Design::Kind::Adaptive)
+    leaf_unit_ = std::make_unique<ScanUnit>(find_design("affine"), adaptive_leaf_widths(widths), viewport_width,
+                                            viewport_height);
+}
 
-TriangleRecord ScanUnit::run(const UnitTriangle& triangle, std::vector<Fragment>* fragments) {
+TriangleRecord ScanUnit::run(const UnitTriangle& triangle, std::vector<Fragment>* fragments, int64_t offered) {
+  if (design_.kind == Design::Kind::Adaptive) return run_adaptive(triangle, fragments, true);
   TriangleRecord record = compute(triangle, fragments);
-  const TriangleCycles c = schedule_.next(phases());
+  const TriangleCycles c = schedule_.next(phases(), offered);
   record.setup_cycles = c.setup;
   record.fill_cycles = c.fill;
   record.walk_cycles = c.walk;
@@ -34,6 +40,7 @@ TriangleRecord ScanUnit::run(const UnitTriangle& triangle, std::vector<Fragment>
 }
 
 TriangleRecord ScanUnit::compute(const UnitTriangle& triangle, std::vector<Fragment>* fragments) {
+  if (design_.kind == Design::Kind::Adaptive) return run_adaptive(triangle, fragments, false);
   const Setup setup = setup_engine(triangle, design_, widths_, viewport_width_, viewport_height_);
   if (trace_) {
     trace_->setup = setup;
@@ -49,6 +56,7 @@ TriangleRecord ScanUnit::compute(const UnitTriangle& triangle, std::vector<Fragm
       case Design::Kind::Divide: record = run_divide(setup, fragments); break;
       case Design::Kind::Kim: record = run_kim(setup, fragments); break;
       case Design::Kind::Affine: record = run_affine(triangle, setup, fragments); break;
+      case Design::Kind::Adaptive: break;  // run_adaptive
     }
   }
   record.x_major = setup.x_major;
@@ -222,6 +230,46 @@ TriangleRecord ScanUnit::run_affine(const UnitTriangle& triangle, const Setup& s
       start = end;
     }
   }
+  return record;
+}
+
+TriangleRecord ScanUnit::run_adaptive(const UnitTriangle& triangle, std::vector<Fragment>* fragments,
+                                      bool timed) {
+  // The triangle's own setup checks its input and names its major axis.
+  const Setup parent = setup_engine(triangle, design_, widths_, viewport_width_, viewport_height_);
+  const AdaptiveSplit split = adaptive_split(triangle, widths_, viewport_width_, viewport_height_);
+  work_.clear();
+  TriangleRecord record;
+  record.x_major = parent.x_major;
+  record.flags = parent.flags | split.flags;
+  // The split engine accepts the triangle in `accepted`; its root node starts
+  // after the intake. Each leaf is offered after its engine cycles and the
+  // engine goes on in the cycle after the unit accepts it.
+  const int64_t accepted = split_free_;
+  int64_t cycle = accepted + kAdaptiveIntakeCycles;
+  for (const AdaptiveLeaf& leaf : split.leaves) {
+    cycle += leaf.engine_cycles;
+    const TriangleRecord r = timed ? leaf_unit_->run(leaf.triangle, fragments, cycle)
+                                   : leaf_unit_->compute(leaf.triangle, fragments);
+    record.pixels += r.pixels;
+    record.flags |= r.flags;
+    record.cycles += r.cycles;
+    record.setup_cycles += r.setup_cycles;
+    record.fill_cycles += r.fill_cycles;
+    record.walk_cycles += r.walk_cycles;
+    record.record_cycles += r.record_cycles;
+    if (!timed) continue;
+    const int64_t leaf_accepted = leaf_unit_->schedule().last().accept;
+    if (!split_started_) {
+      // The stream's clocks count from the first triangle's acceptance by the
+      // split engine, not its first leaf's by the unit.
+      record.setup_cycles += leaf_accepted - accepted;
+      record.cycles += leaf_accepted - accepted;
+      split_started_ = true;
+    }
+    cycle = leaf_accepted + 1;
+  }
+  if (timed) split_free_ = cycle + split.tail_cycles;
   return record;
 }
 

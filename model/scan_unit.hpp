@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "design.hpp"
@@ -55,7 +56,9 @@ class ScanUnit {
   // Appends the triangle's fragments, in emission order, to *fragments, and
   // returns its record with its clocks as the next triangle of this unit's
   // schedule (the first run() of a ScanUnit is accepted in cycle 0).
-  TriangleRecord run(const UnitTriangle& triangle, std::vector<Fragment>* fragments);
+  // `offered`: the source offers the triangle from that cycle at the earliest
+  // (the adaptive design's split engine; 0: whenever the unit can accept it).
+  TriangleRecord run(const UnitTriangle& triangle, std::vector<Fragment>* fragments, int64_t offered = 0);
   // The same values without the timing layer: the record's cycle fields stay
   // 0 and the schedule does not move. work() describes what the triangle asked
   // of the hardware, phases() its phases.
@@ -68,6 +71,7 @@ class ScanUnit {
   // When set, run() records the setup and every table write of the triangle.
   void trace_blocks(BlockTrace* trace) { trace_ = trace; }
   const Design& design() const { return design_; }
+  const UnitSchedule& schedule() const { return schedule_; }
 
  private:
   TriangleRecord run_constant_depth(const struct Setup& setup, std::vector<Fragment>* fragments);
@@ -75,6 +79,9 @@ class ScanUnit {
   TriangleRecord run_kim(const struct Setup& setup, std::vector<Fragment>* fragments);
   TriangleRecord run_affine(const UnitTriangle& triangle, const struct Setup& setup,
                             std::vector<Fragment>* fragments);
+  // The split engine, then each leaf through leaf_unit_; with `timed` on the
+  // split engine's and the leaf unit's clocks (docs/designs.md, "adaptive").
+  TriangleRecord run_adaptive(const UnitTriangle& triangle, std::vector<Fragment>* fragments, bool timed);
 
   Design design_;
   Widths widths_;
@@ -84,6 +91,11 @@ class ScanUnit {
   UnitSchedule schedule_;
   TriangleWork work_;  // of the last triangle
   BlockTrace* trace_ = nullptr;
+  // adaptive: the affine unit behind the split engine, and the cycle the
+  // split engine can accept the next triangle.
+  std::unique_ptr<ScanUnit> leaf_unit_;
+  int64_t split_free_ = 0;
+  bool split_started_ = false;
 };
 
 }  // namespace cdsim

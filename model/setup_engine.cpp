@@ -61,6 +61,20 @@ std::array<EdgeTracker, 3> edge_trackers(const EdgeSet& e, bool x_major, int64_t
 
 }  // namespace
 
+std::array<Wide, 3> normalised_q(const UnitTriangle& t, const Widths& w) {
+  std::array<Float32, 3> qf{};
+  int max_exponent = 0;
+  for (size_t i = 0; i < 3; ++i) {
+    qf[i] = unpack(t.vertex[i].q_float);
+    max_exponent = std::max(max_exponent, qf[i].exponent);
+  }
+  std::array<Wide, 3> q{};
+  for (size_t i = 0; i < 3; ++i)
+    q[i] = fx::shift_round(qf[i].mantissa, max_exponent - qf[i].exponent + 24 - w.q_bits,
+                           fx::Round::Nearest);
+  return q;
+}
+
 Setup setup_engine(const UnitTriangle& t, const Design& design, const Widths& w,
                    int viewport_width, int viewport_height) {
   Setup s;
@@ -88,16 +102,9 @@ Setup setup_engine(const UnitTriangle& t, const Design& design, const Widths& w,
 
   // Per-triangle normalisation of 1/w: align the three mantissas to the largest
   // exponent. The shared exponent itself cancels in u = U/q and is dropped.
-  std::array<Float32, 3> qf{};
-  int max_exponent = 0;
+  const std::array<Wide, 3> q = normalised_q(t, w);
+  std::array<Wide, 3> uq{}, vq{};
   for (size_t i = 0; i < 3; ++i) {
-    qf[i] = unpack(t.vertex[i].q_float);
-    max_exponent = std::max(max_exponent, qf[i].exponent);
-  }
-  std::array<Wide, 3> q{}, uq{}, vq{};
-  for (size_t i = 0; i < 3; ++i) {
-    q[i] = fx::shift_round(qf[i].mantissa, max_exponent - qf[i].exponent + 24 - w.q_bits,
-                           fx::Round::Nearest);
     if (q[i] == 0) s.flags |= flag::kDepthRange;
     uq[i] = q[i] * t.vertex[i].u;
     vq[i] = q[i] * t.vertex[i].v;

@@ -59,6 +59,11 @@ struct Setup {
   int pixel_q_bits = 127, pixel_uv_bits = 127;  // the per-pixel plane accumulators' widths
 };
 
+// The per-triangle normalisation of the vertices' 1/w: the three binary32
+// mantissas aligned to the largest exponent, rounded to q_bits (the shared
+// exponent cancels in u = U/q and is dropped). 0 when a 1/w underflows.
+std::array<fx::Wide, 3> normalised_q(const UnitTriangle& triangle, const Widths& widths);
+
 Setup setup_engine(const UnitTriangle& triangle, const Design& design, const Widths& widths,
                    int viewport_width, int viewport_height);
 

@@ -111,6 +111,9 @@ TrianglePhases UnitTiming::phases(const TriangleWork& work) const {
       p.kind = TrianglePhases::Kind::Walk;
       p.walk = walk_affine(work);
       break;
+    case Design::Kind::Adaptive:
+      // Its leaves go through an affine unit of their own (ScanUnit::run_adaptive).
+      break;
   }
   return p;
 }
@@ -131,8 +134,8 @@ void UnitSchedule::reset() {
   last_ = ScheduledTriangle{};
 }
 
-TriangleCycles UnitSchedule::next(const TrianglePhases& phases) {
-  int64_t accept = front_free_;
+TriangleCycles UnitSchedule::next(const TrianglePhases& phases, int64_t offered_from) {
+  int64_t accept = std::max(front_free_, offered_from);
   if (fifo_depth_ == 0 && started_) accept = std::max(accept, last_.record + 1);
   if (offer_after_record_ && started_) accept = std::max(accept, last_.record);
   const int64_t offered = accept + setup_cycles_;  // the last setup cycle (after the accept cycle): offered from here

@@ -151,8 +151,10 @@ class UnitSchedule {
  public:
   explicit UnitSchedule(const Widths& widths);
 
-  // Places the next triangle of the stream and returns its clocks.
-  TriangleCycles next(const TrianglePhases& phases);
+  // Places the next triangle of the stream and returns its clocks. The
+  // source offers it from cycle `offered` at the earliest (the split engine
+  // of the adaptive design; 0: as soon as the unit can accept it).
+  TriangleCycles next(const TrianglePhases& phases, int64_t offered = 0);
   // The cycle numbers of the triangle next() placed last.
   const ScheduledTriangle& last() const { return last_; }
   // Starts a new stream: the next triangle is accepted in cycle 0.

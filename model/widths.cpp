@@ -80,6 +80,13 @@ void validate(const Widths& w) {
         "persp_table_log2={} needs persp_frac >= it (persp_frac={}): the table's index is the top "
         "bits of the fraction",
         w.persp_table_log2, w.persp_frac));
+  // Edge functions of the adaptive design's leaves are 64-bit: coordinates
+  // below 2^(15 + subpixel bits) each way.
+  if (w.subpixel_bits + w.adapt_depth > 14)
+    throw std::invalid_argument(fmt::format(
+        "subpixel_bits + adapt_depth = {} exceeds 14: the leaves' vertices would carry more subpixel bits "
+        "than the edge functions hold",
+        w.subpixel_bits + w.adapt_depth));
   if (w.out_int + w.out_frac > 48)
     throw std::invalid_argument("out_int + out_frac must not exceed 48 bits");
 }

@@ -1,0 +1,157 @@
+#include "adaptive_split.hpp"
+
+#include <array>
+#include <cstring>
+
+#include "coverage.hpp"
+#include "design.hpp"
+#include "fixed.hpp"
+#include "setup_engine.hpp"
+
+namespace cdsim {
+
+using fx::Wide;
+
+Widths adaptive_leaf_widths(const Widths& widths) {
+  Widths leaf = widths;
+  leaf.subpixel_bits += widths.adapt_depth;
+  leaf.uv_in_frac += widths.adapt_uv_extra;
+  return leaf;
+}
+
+namespace {
+
+// A vertex in the split engine. x, y carry adapt_depth more subpixel bits, q,
+// U = u q and V = v q are scaled by 2^adapt_depth: a node at depth d holds
+// values with adapt_depth - d low zero bits, so its midpoints are exact. u, v
+// are at the leaf's uv_in_frac: exact at the triangle's vertices, rounded at
+// midpoints.
+struct SplitVertex {
+  int64_t x = 0, y = 0;
+  Wide q = 0, big_u = 0, big_v = 0;
+  int64_t u = 0, v = 0;
+};
+
+struct Node {
+  std::array<SplitVertex, 3> vertex;
+  int depth = 0;
+};
+
+UnitTriangle to_triangle(const Node& node) {
+  UnitTriangle t;
+  for (size_t i = 0; i < 3; ++i) {
+    const SplitVertex& s = node.vertex[i];
+    UnitVertex& v = t.vertex[i];
+    v.x = s.x;
+    v.y = s.y;
+    v.u = s.u;
+    v.v = s.v;
+    // The affine unit uses 1/w only for its depth-range flag: any positive
+    // value of the right sign will do, 0 stays 0.
+    const float q = static_cast<float>(static_cast<double>(s.q));
+    std::memcpy(&v.q_float, &q, sizeof q);
+  }
+  return t;
+}
+
+}  // namespace
+
+AdaptiveSplit adaptive_split(const UnitTriangle& triangle, const Widths& w, int viewport_width,
+                             int viewport_height) {
+  const Widths leaf_widths = adaptive_leaf_widths(w);
+  const int depth_limit = w.adapt_depth;
+  const int extra = w.adapt_uv_extra;
+  const fx::Format uv_format{16, leaf_widths.uv_in_frac, true};  // |u| < 2^15 texels, as at the input
+  // |u_P + u_Q - 2 u_M| > 2 * 2^-adapt_bound_frac texels, compared as integers.
+  const auto misses = [&](int64_t a, int64_t b, int64_t middle) {
+    const Wide error = Wide{a} + b - 2 * Wide{middle};
+    const Wide magnitude = error < 0 ? -error : error;
+    return (magnitude << w.adapt_bound_frac) > (Wide{1} << (leaf_widths.uv_in_frac + 1));
+  };
+
+  AdaptiveSplit out;
+  const std::array<Wide, 3> q = normalised_q(triangle, w);
+  Node root;
+  for (size_t i = 0; i < 3; ++i) {
+    const UnitVertex& in = triangle.vertex[i];
+    SplitVertex& s = root.vertex[i];
+    s.x = in.x * (int64_t{1} << depth_limit);
+    s.y = in.y * (int64_t{1} << depth_limit);
+    s.q = q[i] << depth_limit;
+    s.big_u = (q[i] * in.u) << depth_limit;
+    s.big_v = (q[i] * in.v) << depth_limit;
+    s.u = in.u * (int64_t{1} << extra);
+    s.v = in.v * (int64_t{1} << extra);
+    if (q[i] == 0) out.flags |= flag::kDepthRange;
+  }
+
+  std::vector<Node> stack = {root};
+  int64_t cycles = 0;  // split-engine cycles since the last leaf was accepted
+  const auto emit = [&](const Node& node) {
+    out.leaves.push_back({to_triangle(node), node.depth, cycles});
+    cycles = 0;
+  };
+  while (!stack.empty()) {
+    const Node node = stack.back();
+    stack.pop_back();
+    const UnitTriangle t = to_triangle(node);
+    const bool nothing = make_edges(t, leaf_widths.subpixel_bits).det == 0 ||
+                         bounding_box(t, leaf_widths.subpixel_bits, viewport_width, viewport_height).empty();
+    if (nothing && node.depth > 0) {
+      // A sub-triangle's box holds no pixel centre: nothing to send.
+      cycles += kAdaptiveDropCycles;
+      ++out.dropped;
+      continue;
+    }
+    if (nothing || node.depth == depth_limit) {
+      emit(node);
+      continue;
+    }
+    // Midpoint j lies on the edge opposite vertex j, between vertices j+1 and j+2.
+    ++out.evaluations;
+    cycles += adaptive_evaluation_cycles(w);
+    std::array<SplitVertex, 3> middle{};
+    bool split = false;
+    for (size_t j = 0; j < 3; ++j) {
+      const SplitVertex& a = node.vertex[(j + 1) % 3];
+      const SplitVertex& b = node.vertex[(j + 2) % 3];
+      SplitVertex& m = middle[j];
+      m.x = (a.x + b.x) / 2;
+      m.y = (a.y + b.y) / 2;
+      m.q = (a.q + b.q) / 2;
+      m.big_u = (a.big_u + b.big_u) / 2;
+      m.big_v = (a.big_v + b.big_v) / 2;
+      const Reciprocal r = reciprocal(m.q, w.recip_bits);
+      if (r.out_of_range) out.flags |= flag::kDepthRange;
+      const int product_frac = w.recip_bits + r.exponent + w.uv_in_frac;
+      bool saturated = false;
+      m.u = static_cast<int64_t>(fx::narrow(m.big_u * r.mantissa, product_frac, uv_format, fx::Round::Nearest,
+                                            fx::Overflow::Saturate, &saturated));
+      m.v = static_cast<int64_t>(fx::narrow(m.big_v * r.mantissa, product_frac, uv_format, fx::Round::Nearest,
+                                            fx::Overflow::Saturate, &saturated));
+      if (saturated) out.flags |= flag::kOutputSaturated;
+      split = split || misses(a.u, b.u, m.u) || misses(a.v, b.v, m.v);
+    }
+    if (!split) {
+      emit(node);
+      continue;
+    }
+    ++out.splits;
+    const auto& v = node.vertex;
+    const int d = node.depth + 1;
+    // Pushed in reverse, so that they are taken A's corner, B's, C's, then the middle.
+    stack.push_back({{middle[2], middle[0], middle[1]}, d});
+    stack.push_back({{middle[1], middle[0], v[2]}, d});
+    stack.push_back({{middle[2], v[1], middle[0]}, d});
+    stack.push_back({{v[0], middle[2], middle[1]}, d});
+  }
+  if (out.leaves.empty()) {
+    // Every sub-triangle was dropped, so the triangle covers no pixel centre
+    // (its leaves would tile it): it goes to the unit whole, for its record.
+    emit(root);
+  }
+  out.tail_cycles = cycles;
+  return out;
+}
+
+}  // namespace cdsim
