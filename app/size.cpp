@@ -42,6 +42,12 @@ std::vector<std::string> sized_parameters(const Design& d) {
   return {};
 }
 
+const ParamInfo& info(const std::string& name) {
+  for (const auto& p : param_table())
+    if (name == p.name) return p;
+  throw std::logic_error("unknown parameter " + name);
+}
+
 // Wide but valid starting widths (the walker's accumulator must fit 64 bits)
 // for the widths sizing changes; the others stay as the user set them, so
 // that a design's result names only what its hardware depends on.
@@ -51,16 +57,10 @@ Widths widest(Widths w, const Design& design) {
            {"q_bits", 32}, {"plane_bits", 48}, {"g_frac", 30}, {"recip_bits", 32}, {"t_int", 20},
            {"t_frac", 24}, {"s_int", 20}, {"s_frac", 24}, {"d_frac", 24}, {"kim_frac", 16},
            {"persp_table_log2", 8}, {"eps_int", 16}, {"eps_frac", 30}, {"persp_frac", 30},
-           {"adapt_depth", 3}, {"adapt_uv_extra", 4}, {"adapt_bound_frac", 12}})
-    if (std::find(sized.begin(), sized.end(), name) != sized.end()) set_param(w, name, value);
+           {"adapt_depth", 14 - w.subpixel_bits}, {"adapt_uv_extra", 4}, {"adapt_bound_frac", 12}})
+    if (std::find(sized.begin(), sized.end(), name) != sized.end()) set_param(w, name, std::min(value, info(name).max_value));
   if (design.kind == Design::Kind::ConstantDepth) w.table_depth = 65536 / 4;  // no banding while sizing
   return w;
-}
-
-const ParamInfo& info(const std::string& name) {
-  for (const auto& p : param_table())
-    if (name == p.name) return p;
-  throw std::logic_error("unknown parameter " + name);
 }
 
 }  // namespace
