@@ -47,6 +47,12 @@ std::string results_table(const std::vector<DesignResult>& results, const Widths
   out += fmt::format("errors in texels against the exact reference (max(|du|,|dv|) per pixel); "
                      "texel% = pixels whose nearest texel differs; output LSB = 2^-{}\n",
                      widths.out_frac);
+  std::string model_only;
+  for (const DesignResult& r : results)
+    if (!has_rtl(r.design)) model_only += (model_only.empty() ? "" : ", ") + r.design.name;
+  if (!model_only.empty())
+    out += fmt::format("model only, no RTL yet: {} (its cycles are the model's, not checked against RTL)\n",
+                       model_only);
   return out;
 }
 
@@ -99,6 +105,7 @@ nlohmann::json results_json(const Scene& scene, const Widths& widths,
   for (const DesignResult& r : results) {
     nlohmann::json d;
     d["name"] = r.design.name;
+    d["has_rtl"] = has_rtl(r.design);  // false: the cycles are the model's alone
     d["pixels"] = r.pixels;
     d["cycles"] = r.cycles;
     d["pixels_per_clock"] = r.pixels_per_clock();
