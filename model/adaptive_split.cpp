@@ -77,9 +77,10 @@ AdaptiveSplit adaptive_split(const UnitTriangle& triangle, const Widths& w, int 
     SplitVertex& s = root.vertex[i];
     s.x = in.x * (int64_t{1} << depth_limit);
     s.y = in.y * (int64_t{1} << depth_limit);
-    s.q = q[i] << depth_limit;
-    s.big_u = (q[i] * in.u) << depth_limit;
-    s.big_v = (q[i] * in.v) << depth_limit;
+    const Wide scale = Wide{1} << depth_limit;  // multiplied: U and V may be negative
+    s.q = q[i] * scale;
+    s.big_u = q[i] * in.u * scale;
+    s.big_v = q[i] * in.v * scale;
     s.u = in.u * (int64_t{1} << extra);
     s.v = in.v * (int64_t{1} << extra);
     if (q[i] == 0) out.flags |= flag::kDepthRange;
