@@ -1,7 +1,6 @@
 #include "adaptive_split.hpp"
 
 #include <array>
-#include <cstring>
 
 #include "coverage.hpp"
 #include "design.hpp"
@@ -46,10 +45,13 @@ UnitTriangle to_triangle(const Node& node) {
     v.y = s.y;
     v.u = s.u;
     v.v = s.v;
-    // The affine unit uses 1/w only for its depth-range flag: any positive
-    // value of the right sign will do, 0 stays 0.
-    const float q = static_cast<float>(static_cast<double>(s.q));
-    std::memcpy(&v.q_float, &q, sizeof q);
+    // The affine unit uses 1/w only for its depth-range flag: q as binary32,
+    // its mantissa truncated (a leading-one detector and a shift), 0 as 0.
+    if (s.q > 0) {
+      const int exponent = fx::bit_length(s.q) - 1;
+      const Wide mantissa = exponent >= 23 ? s.q >> (exponent - 23) : s.q << (23 - exponent);
+      v.q_float = (static_cast<uint32_t>(exponent + 127) << 23) | (static_cast<uint32_t>(mantissa) & 0x7fffffu);
+    }
   }
   return t;
 }

@@ -42,10 +42,11 @@ struct AdaptiveSplit {
 
 // Split-engine timing (docs/designs.md): the cycles of the intake of a
 // triangle (1/w normalised, U = u q and V = v q), of one node's evaluation
-// (midpoints, three reciprocals on one pipelined unit, the u, v multiplies,
-// the tests), and of dropping a node with an empty box.
+// (the midpoints; three reciprocals issued on one pipelined unit, each
+// result multiplied and narrowed in the cycle it arrives; the tests), and
+// of dropping a node with an empty box.
 inline constexpr int64_t kAdaptiveIntakeCycles = 2;
-inline int64_t adaptive_evaluation_cycles(const Widths& widths) { return widths.recip_latency + 4; }
+inline int64_t adaptive_evaluation_cycles(const Widths& widths) { return 1 + 3 + widths.recip_latency + 1; }
 inline constexpr int64_t kAdaptiveDropCycles = 1;
 
 AdaptiveSplit adaptive_split(const UnitTriangle& triangle, const Widths& widths, int viewport_width,

@@ -196,7 +196,7 @@ TEST(Adaptive, DepthZeroIsPlainAffineAtTheLeafWidths) {
 TEST(Adaptive, SplitEngineDelaysTheFirstLeafByItsIntakeAndEvaluation) {
   // Counted by hand from docs/designs.md: the triangle is accepted in cycle 0,
   // its intake takes cycles 0 and 1, its root is evaluated from cycle 2 for
-  // recip_latency + 4 cycles (unless at the depth limit), and the leaf is
+  // recip_latency + 5 cycles (unless at the depth limit), and the leaf is
   // offered in the cycle after. The affine unit behind it then takes the
   // cycles it takes alone. Its 1/w are equal, so u is affine and nothing splits.
   const ScreenTriangle s = testing::screen_triangle(
@@ -218,7 +218,7 @@ TEST(Adaptive, SplitEngineDelaysTheFirstLeafByItsIntakeAndEvaluation) {
       TriangleRecord adaptive, affine;
       testing::run_unit(find_design("adaptive"), w, 64, 64, t, &adaptive);
       testing::run_unit(find_design("affine"), adaptive_leaf_widths(w), 64, 64, leaf, &affine);
-      const int64_t delay = 2 + (depth > 0 ? latency + 4 : 0);
+      const int64_t delay = 2 + (depth > 0 ? latency + 5 : 0);
       EXPECT_EQ(adaptive.cycles, affine.cycles + delay) << "depth " << depth << " latency " << latency;
       EXPECT_EQ(adaptive.setup_cycles, affine.setup_cycles + delay);
       EXPECT_EQ(adaptive.walk_cycles, affine.walk_cycles);
@@ -230,9 +230,9 @@ TEST(Adaptive, SplitEngineDelaysTheFirstLeafByItsIntakeAndEvaluation) {
 TEST(Adaptive, SplitEngineOffersEachTriangleAfterThePreviousLeafIsAccepted) {
   // Two triangles that do not split, with a reciprocal latency long enough for
   // the split engine to be the bottleneck. By hand (docs/designs.md): the
-  // first is accepted in cycle 0 and its leaf offered in 2 + (20 + 4) = 26;
-  // the unit accepts it then, the engine takes the second in 27 and offers
-  // its leaf in 27 + 2 + 24 = 53. The affine unit, told those offer cycles,
+  // first is accepted in cycle 0 and its leaf offered in 2 + (20 + 5) = 27;
+  // the unit accepts it then, the engine takes the second in 28 and offers
+  // its leaf in 28 + 2 + 25 = 55. The affine unit, told those offer cycles,
   // gives the clocks: the first's counted from cycle 0.
   const ScreenTriangle a = testing::screen_triangle(
       {{{{3.2, 4.7, 2.0, 10.0, 20.0}}, {{20.4, 10.1, 2.0, 90.5, 61.25}}, {{10.3, 20.9, 2.0, -30.75, 81.0}}}});
@@ -256,11 +256,11 @@ TEST(Adaptive, SplitEngineOffersEachTriangleAfterThePreviousLeafIsAccepted) {
   ScanUnit affine(find_design("affine"), adaptive_leaf_widths(w), 64, 64);
   std::vector<Fragment> f;
   const TriangleRecord ra = adaptive.run(ta, &f), rb = adaptive.run(tb, &f);
-  const TriangleRecord la = affine.run(leaf(ta), &f, 26);
-  EXPECT_EQ(affine.schedule().last().accept, 26);
-  const TriangleRecord lb = affine.run(leaf(tb), &f, 53);
-  EXPECT_EQ(affine.schedule().last().accept, 53);  // the unit was free before: the engine bounds it
-  EXPECT_EQ(ra.cycles, la.cycles + 26);
+  const TriangleRecord la = affine.run(leaf(ta), &f, 27);
+  EXPECT_EQ(affine.schedule().last().accept, 27);
+  const TriangleRecord lb = affine.run(leaf(tb), &f, 55);
+  EXPECT_EQ(affine.schedule().last().accept, 55);  // the unit was free before: the engine bounds it
+  EXPECT_EQ(ra.cycles, la.cycles + 27);
   EXPECT_EQ(rb.cycles, lb.cycles);
   EXPECT_EQ(rb.setup_cycles, lb.setup_cycles);
   EXPECT_GT(rb.pixels, 100);
