@@ -1,0 +1,210 @@
+// rtl/adaptive_split.sv against the model's split engine
+// (model/adaptive_split.cpp), at every configuration in
+// adaptive_split_configs.hpp, bit and cycle exact:
+//  - the leaves of each triangle, in order: vertices (x, y, 1/w as binary32,
+//    u, v) and depth;
+//  - the cycle each leaf is first offered: its engine cycles after the cycle
+//    after the previous leaf was taken (the first: after the intake);
+//  - the cycle the next triangle can be accepted: after the last leaf was
+//    taken and the dropped sub-triangles after it, with tri_done_o and the
+//    triangle's flags.
+// The leaf sink stalls at random, so leaves wait in the output register.
+// Triangles: random ones with depth ratios up to 30 (many split), some far
+// off the viewport (dropped sub-triangles), flat ones (nothing splits) and
+// zero-area ones (offered whole).
+#include <vector>
+
+#include "adaptive_split.hpp"
+#include "adaptive_split_configs.hpp"
+#include "design.hpp"
+#include "tb_support.hpp"
+#include "../test_support.hpp"
+
+namespace {
+
+using namespace rtl_units;
+using cdsim::AdaptiveLeaf;
+using cdsim::AdaptiveSplit;
+using cdsim::UnitTriangle;
+using cdsim::Widths;
+
+constexpr int kWidth = 96, kHeight = 72;
+
+int64_t signed_port(uint32_t raw, int bits) {
+  const uint64_t value = raw & mask(bits);
+  return static_cast<int64_t>(value << (64 - bits)) >> (64 - bits);
+}
+
+std::vector<UnitTriangle> triangles(std::mt19937_64& rng, const Widths& w, int count) {
+  std::vector<UnitTriangle> out;
+  for (int n = 0; n < count; ++n) {
+    cdsim::ScreenTriangle s = cdsim::testing::random_triangle(rng, kWidth, kHeight, 30.0, 400.0);
+    if (n % 7 == 3)  // far off the viewport on one side
+      for (auto& v : s.vertex) v.x = v.x * 3 - 2 * kWidth;
+    if (n % 11 == 5)  // flat: u is affine, nothing splits
+      for (auto& v : s.vertex) v.w = 2.0;
+    if (n % 13 == 6) s.vertex[2] = s.vertex[1];  // zero area
+    out.push_back(cdsim::to_unit(s, w, static_cast<size_t>(n)));
+  }
+  return out;
+}
+
+template <class Dut>
+uint64_t check_adaptive_split(const Options& options, const std::string& name, int subpixel_bits,
+                              int uv_in_frac, int q_bits, int recip_bits, int recip_latency, int depth,
+                              int bound_frac, int uv_extra) {
+  Widths w;
+  w.subpixel_bits = subpixel_bits;
+  w.uv_in_frac = uv_in_frac;
+  w.q_bits = q_bits;
+  w.recip_bits = recip_bits;
+  w.recip_latency = recip_latency;
+  w.adapt_depth = depth;
+  w.adapt_bound_frac = bound_frac;
+  w.adapt_uv_extra = uv_extra;
+  const Widths leaf = cdsim::adaptive_leaf_widths(w);
+  const int coord_bits = 16 + subpixel_bits, uv_bits = 16 + uv_in_frac;
+  const int leaf_coord_bits = 16 + leaf.subpixel_bits, leaf_uv_bits = 16 + leaf.uv_in_frac;
+  std::printf("%s: seed=%" PRIu64 "\n", name.c_str(), options.seed);
+  std::fflush(stdout);
+  std::mt19937_64 rng(options.seed * 1000003 + static_cast<uint64_t>(depth * 100 + bound_frac));
+  const std::vector<UnitTriangle> input = triangles(rng, w, 300);
+  Bench<Dut> bench(options, name);
+  Dut& dut = bench.dut();
+  Failures failures(name, options.seed);
+  dut.viewport_width_i = kWidth;
+  dut.viewport_height_i = kHeight;
+  dut.tri_valid_i = 0;
+  dut.leaf_ready_i = 0;
+  dut.rst_ni = 0;
+  bench.tick();
+  dut.rst_ni = 1;
+
+  std::bernoulli_distribution ready(0.7);
+  uint64_t leaves = 0, splits = 0, dropped = 0;
+  int64_t free_from = static_cast<int64_t>(bench.cycle());  // the engine can accept from here
+  for (size_t t = 0; t < input.size() && failures.count() == 0; ++t) {
+    const AdaptiveSplit split = cdsim::adaptive_split(input[t], w, kWidth, kHeight);
+    if (std::getenv("TB_TRACE")) {
+      std::printf("triangle %zu: accept %" PRId64 ", %zu leaves, splits %" PRId64 ", dropped %" PRId64 ", tail %" PRId64 ":", t,
+                  free_from, split.leaves.size(), split.splits, split.dropped, split.tail_cycles);
+      for (const AdaptiveLeaf& l : split.leaves) std::printf(" d%d+%" PRId64, l.depth, l.engine_cycles);
+      std::printf("\n");
+    }
+    splits += static_cast<uint64_t>(split.splits);
+    dropped += static_cast<uint64_t>(split.dropped);
+    for (size_t k = 0; k < 3; ++k) {
+      const cdsim::UnitVertex& v = input[t].vertex[k];
+      drive(dut.tri_x_i[k], static_cast<uint64_t>(v.x) & mask(coord_bits));
+      drive(dut.tri_y_i[k], static_cast<uint64_t>(v.y) & mask(coord_bits));
+      drive(dut.tri_q_i[k], v.q_float);
+      drive(dut.tri_u_i[k], static_cast<uint64_t>(v.u) & mask(uv_bits));
+      drive(dut.tri_v_i[k], static_cast<uint64_t>(v.v) & mask(uv_bits));
+    }
+    dut.tri_valid_i = 1;
+    bench.settle();
+    const int64_t accept_expected = free_from;
+    while (!dut.tri_ready_o && static_cast<int64_t>(bench.cycle()) < accept_expected + 4) bench.tick();
+    if (static_cast<int64_t>(bench.cycle()) != accept_expected || !dut.tri_ready_o) {
+      failures.report(format("triangle %zu accepted in cycle %" PRIu64 ", expected %" PRId64, t, bench.cycle(),
+                             accept_expected));
+      break;
+    }
+    bench.tick();  // the accept cycle
+    dut.tri_valid_i = 0;
+    int64_t from = accept_expected + cdsim::kAdaptiveIntakeCycles;
+    for (size_t i = 0; i < split.leaves.size(); ++i) {
+      const AdaptiveLeaf& l = split.leaves[i];
+      const int64_t offer = from + l.engine_cycles;
+      // Nothing offered before its cycle.
+      while (static_cast<int64_t>(bench.cycle()) < offer) {
+        dut.leaf_ready_i = ready(rng);
+        bench.settle();
+        if (dut.leaf_valid_o) {
+          failures.report(format("triangle %zu leaf %zu offered in cycle %" PRIu64 ", expected %" PRId64, t, i,
+                                 bench.cycle(), offer));
+          break;
+        }
+        bench.tick();
+      }
+      if (failures.count() != 0) break;
+      dut.leaf_ready_i = ready(rng);
+      bench.settle();
+      if (!dut.leaf_valid_o) {
+        failures.report(format("triangle %zu leaf %zu not offered in cycle %" PRId64, t, i, offer));
+        break;
+      }
+      const auto expect = [&](const char* field, int64_t got, int64_t want) {
+        if (got != want)
+          failures.report(format("triangle %zu leaf %zu (of %zu, depth %d): %s = %" PRId64 ", model %" PRId64, t, i,
+                                 split.leaves.size(), l.depth, field, got, want));
+      };
+      for (size_t k = 0; k < 3; ++k) {
+        const cdsim::UnitVertex& v = l.triangle.vertex[k];
+        expect("x", signed_port(dut.leaf_x_o[k], leaf_coord_bits), v.x);
+        expect("y", signed_port(dut.leaf_y_o[k], leaf_coord_bits), v.y);
+        expect("q", dut.leaf_q_o[k], v.q_float);
+        expect("u", signed_port(dut.leaf_u_o[k], leaf_uv_bits), v.u);
+        expect("v", signed_port(dut.leaf_v_o[k], leaf_uv_bits), v.v);
+      }
+      expect("depth", dut.leaf_depth_o, l.depth);
+      // Held until taken.
+      while (!dut.leaf_ready_i) {
+        bench.tick();
+        dut.leaf_ready_i = ready(rng);
+        bench.settle();
+        if (!dut.leaf_valid_o) {
+          failures.report(format("triangle %zu leaf %zu dropped before it was taken", t, i));
+          break;
+        }
+      }
+      from = static_cast<int64_t>(bench.cycle()) + 1;
+      bench.tick();
+      dut.leaf_ready_i = 0;
+      ++leaves;
+    }
+    free_from = from + split.tail_cycles;
+    // Done in the cycle the engine can take the next triangle.
+    while (static_cast<int64_t>(bench.cycle()) < free_from) {
+      bench.settle();
+      if (dut.tri_done_o) failures.report(format("triangle %zu done in cycle %" PRIu64 ", expected %" PRId64, t,
+                                                 bench.cycle(), free_from));
+      bench.tick();
+    }
+    bench.settle();
+    const uint32_t flags = (split.flags & cdsim::flag::kDepthRange ? 1u : 0u) |
+                           (split.flags & cdsim::flag::kOutputSaturated ? 2u : 0u);
+    if (!dut.tri_done_o || dut.tri_flags_o != flags)
+      failures.report(format("triangle %zu: done %d, flags %d in cycle %" PRId64 ", model flags %u", t, dut.tri_done_o,
+                             dut.tri_flags_o, free_from, flags));
+  }
+  failures.summary();
+  std::printf("%s: %zu triangles, %" PRIu64 " leaves, %" PRIu64 " splits, %" PRIu64 " dropped, %" PRIu64
+              " cycles, %" PRIu64 " mismatches\n",
+              name.c_str(), input.size(), leaves, splits, dropped, bench.cycle(), failures.count());
+  if (failures.count() == 0 && (splits == 0 || leaves < input.size())) {
+    std::printf("FAIL %s: the triangles did not exercise splits\n", name.c_str());
+    return 1;
+  }
+  return failures.count();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Options options = parse_options(argc, argv);
+  uint64_t failed = 0;
+  bool matched = false;
+#define RUN_CONFIG(Prefix, config_name, ...)                                            \
+  if (options.only.empty() || options.only == config_name) {                            \
+    matched = true;                                                                     \
+    failed += check_adaptive_split<Prefix>(options, config_name, __VA_ARGS__) ? 1 : 0;  \
+  }
+  ADAPTIVE_SPLIT_CONFIGS(RUN_CONFIG)
+#undef RUN_CONFIG
+  if (!matched) {
+    std::fprintf(stderr, "--only %s: no such configuration\n", options.only.c_str());
+    return 2;
+  }
+  return failed == 0 ? 0 : 1;
+}
