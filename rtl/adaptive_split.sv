@@ -40,18 +40,19 @@ module adaptive_split #(
   input  logic [13:0]                     viewport_height_i,
   input  logic                            tri_valid_i,
   output logic                            tri_ready_o,
-  input  logic signed [CoordBits-1:0]     tri_x_i [3],
-  input  logic signed [CoordBits-1:0]     tri_y_i [3],
-  input  logic [31:0]                     tri_q_i [3],
-  input  logic signed [UvBits-1:0]        tri_u_i [3],
-  input  logic signed [UvBits-1:0]        tri_v_i [3],
+  // Vertex k of each field at [k W +: W]; 1/w as binary32.
+  input  logic [3*CoordBits-1:0]          tri_x_i,
+  input  logic [3*CoordBits-1:0]          tri_y_i,
+  input  logic [95:0]                     tri_q_i,
+  input  logic [3*UvBits-1:0]             tri_u_i,
+  input  logic [3*UvBits-1:0]             tri_v_i,
   output logic                            leaf_valid_o,
   input  logic                            leaf_ready_i,
-  output logic signed [LeafCoordBits-1:0] leaf_x_o [3],
-  output logic signed [LeafCoordBits-1:0] leaf_y_o [3],
-  output logic [31:0]                     leaf_q_o [3],
-  output logic signed [LeafUvBits-1:0]    leaf_u_o [3],
-  output logic signed [LeafUvBits-1:0]    leaf_v_o [3],
+  output logic [3*LeafCoordBits-1:0]      leaf_x_o,
+  output logic [3*LeafCoordBits-1:0]      leaf_y_o,
+  output logic [95:0]                     leaf_q_o,
+  output logic [3*LeafUvBits-1:0]         leaf_u_o,
+  output logic [3*LeafUvBits-1:0]         leaf_v_o,
   output logic [7:0]                      leaf_depth_o,
   // The cycle after a triangle's last node (a leaf taken or a sub-triangle
   // dropped), with its flags: {output saturated, depth range}.
@@ -257,18 +258,18 @@ module adaptive_split #(
 
   // ------------------------------------------------------------------ output
   always_comb begin
+    leaf_q_o = '0;
     for (int k = 0; k < 3; k++) begin
-      leaf_x_o[k] = cur_x[k];
-      leaf_y_o[k] = cur_y[k];
-      leaf_u_o[k] = cur_u[k];
-      leaf_v_o[k] = cur_v[k];
+      leaf_x_o[k*LeafCoordBits +: LeafCoordBits] = cur_x[k];
+      leaf_y_o[k*LeafCoordBits +: LeafCoordBits] = cur_y[k];
+      leaf_u_o[k*LeafUvBits +: LeafUvBits] = cur_u[k];
+      leaf_v_o[k*LeafUvBits +: LeafUvBits] = cur_v[k];
       // q as binary32, the mantissa truncated.
-      leaf_q_o[k] = '0;
       for (int b = 0; b < NodeQBits; b++) begin
         if (cur_q[k][b]) begin
-          leaf_q_o[k][30:23] = 8'(b + 127);
-          if (b >= 23) leaf_q_o[k][22:0] = 23'(64'(cur_q[k]) >> (b - 23));
-          else leaf_q_o[k][22:0] = 23'(64'(cur_q[k]) << (23 - b));
+          leaf_q_o[k*32 + 23 +: 8] = 8'(b + 127);
+          if (b >= 23) leaf_q_o[k*32 +: 23] = 23'(64'(cur_q[k]) >> (b - 23));
+          else leaf_q_o[k*32 +: 23] = 23'(64'(cur_q[k]) << (23 - b));
         end
       end
     end
@@ -335,11 +336,11 @@ module adaptive_split #(
       case (state_q)
         StIdle: if (tri_valid_i) begin
           for (int k = 0; k < 3; k++) begin
-            in_x_q[k] <= tri_x_i[k];
-            in_y_q[k] <= tri_y_i[k];
-            in_q_q[k] <= tri_q_i[k];
-            in_u_q[k] <= tri_u_i[k];
-            in_v_q[k] <= tri_v_i[k];
+            in_x_q[k] <= tri_x_i[k*CoordBits +: CoordBits];
+            in_y_q[k] <= tri_y_i[k*CoordBits +: CoordBits];
+            in_q_q[k] <= tri_q_i[k*32 +: 32];
+            in_u_q[k] <= tri_u_i[k*UvBits +: UvBits];
+            in_v_q[k] <= tri_v_i[k*UvBits +: UvBits];
           end
           state_q <= StIntake;
         end

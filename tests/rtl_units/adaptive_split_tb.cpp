@@ -12,6 +12,7 @@
 // Triangles: random ones with depth ratios up to 30 (many split), some far
 // off the viewport (dropped sub-triangles), flat ones (nothing splits) and
 // zero-area ones (offered whole).
+#include <type_traits>
 #include <vector>
 
 #include "adaptive_split.hpp"
@@ -30,8 +31,37 @@ using cdsim::Widths;
 
 constexpr int kWidth = 96, kHeight = 72;
 
-int64_t signed_port(uint32_t raw, int bits) {
-  const uint64_t value = raw & mask(bits);
+// Bits of a flattened port, whatever Verilator made of it (an integer, or
+// VlWide words).
+template <std::size_t N>
+bool bit(const VlWide<N>& port, int i) {
+  return (port[static_cast<std::size_t>(i / 32)] >> (i % 32)) & 1u;
+}
+template <std::size_t N>
+void set_bit(VlWide<N>& port, int i, bool value) {
+  EData& word = port[static_cast<std::size_t>(i / 32)];
+  word = value ? word | (EData{1} << (i % 32)) : word & ~(EData{1} << (i % 32));
+}
+template <class T, class = std::enable_if_t<std::is_integral_v<T>>>
+bool bit(const T& port, int i) {
+  return (static_cast<uint64_t>(port) >> i) & 1u;
+}
+template <class T, class = std::enable_if_t<std::is_integral_v<T>>>
+void set_bit(T& port, int i, bool value) {
+  const auto one = static_cast<T>(T{1} << i);
+  port = value ? static_cast<T>(port | one) : static_cast<T>(port & ~one);
+}
+
+// Field k (of `bits` bits) of a port holding three: written, and read signed or not.
+template <class Port>
+void put(Port& port, int k, int bits, int64_t value) {
+  for (int i = 0; i < bits; ++i) set_bit(port, k * bits + i, (static_cast<uint64_t>(value) >> i) & 1u);
+}
+template <class Port>
+int64_t field(const Port& port, int k, int bits, bool is_signed = true) {
+  uint64_t value = 0;
+  for (int i = 0; i < bits; ++i) value |= uint64_t{bit(port, k * bits + i)} << i;
+  if (!is_signed || bits == 64) return static_cast<int64_t>(value);
   return static_cast<int64_t>(value << (64 - bits)) >> (64 - bits);
 }
 
@@ -95,11 +125,11 @@ uint64_t check_adaptive_split(const Options& options, const std::string& name, i
     dropped += static_cast<uint64_t>(split.dropped);
     for (size_t k = 0; k < 3; ++k) {
       const cdsim::UnitVertex& v = input[t].vertex[k];
-      drive(dut.tri_x_i[k], static_cast<uint64_t>(v.x) & mask(coord_bits));
-      drive(dut.tri_y_i[k], static_cast<uint64_t>(v.y) & mask(coord_bits));
-      drive(dut.tri_q_i[k], v.q_float);
-      drive(dut.tri_u_i[k], static_cast<uint64_t>(v.u) & mask(uv_bits));
-      drive(dut.tri_v_i[k], static_cast<uint64_t>(v.v) & mask(uv_bits));
+      put(dut.tri_x_i, static_cast<int>(k), coord_bits, v.x);
+      put(dut.tri_y_i, static_cast<int>(k), coord_bits, v.y);
+      put(dut.tri_q_i, static_cast<int>(k), 32, v.q_float);
+      put(dut.tri_u_i, static_cast<int>(k), uv_bits, v.u);
+      put(dut.tri_v_i, static_cast<int>(k), uv_bits, v.v);
     }
     dut.tri_valid_i = 1;
     bench.settle();
@@ -141,11 +171,12 @@ uint64_t check_adaptive_split(const Options& options, const std::string& name, i
       };
       for (size_t k = 0; k < 3; ++k) {
         const cdsim::UnitVertex& v = l.triangle.vertex[k];
-        expect("x", signed_port(dut.leaf_x_o[k], leaf_coord_bits), v.x);
-        expect("y", signed_port(dut.leaf_y_o[k], leaf_coord_bits), v.y);
-        expect("q", dut.leaf_q_o[k], v.q_float);
-        expect("u", signed_port(dut.leaf_u_o[k], leaf_uv_bits), v.u);
-        expect("v", signed_port(dut.leaf_v_o[k], leaf_uv_bits), v.v);
+        const int ki = static_cast<int>(k);
+        expect("x", field(dut.leaf_x_o, ki, leaf_coord_bits), v.x);
+        expect("y", field(dut.leaf_y_o, ki, leaf_coord_bits), v.y);
+        expect("q", field(dut.leaf_q_o, ki, 32, false), v.q_float);
+        expect("u", field(dut.leaf_u_o, ki, leaf_uv_bits), v.u);
+        expect("v", field(dut.leaf_v_o, ki, leaf_uv_bits), v.v);
       }
       expect("depth", dut.leaf_depth_o, l.depth);
       // Held until taken.
