@@ -9,15 +9,15 @@
 # affine has no table and no reciprocal at all, and its own setup; quad-sub8
 # has no table and no per-pixel multiply, and exact points (a reciprocal) and
 # its subdivision datapath.
-# quad-sub8 only with a fourth argument "long" (the long suite: CI's time).
+# affine and quad-sub8 only with a fourth argument "long" (the long suite: CI's time).
 # Usage: check_design_area.sh CDSIM WORKDIR "NARROW SETTINGS" [long]
 set -euo pipefail
 cdsim=$1 work=$2 narrow=$3 scope=${4:-ci}
 rm -rf "$work" && mkdir -p "$work"
 args=()
 for s in $narrow; do args+=(--set "$s"); done
-designs=(cd-linear cd-persp divide affine)
-[[ $scope == long ]] && designs+=(quad-sub8)
+designs=(cd-linear cd-persp divide)
+[[ $scope == long ]] && designs+=(affine quad-sub8)
 for d in "${designs[@]}"; do
   "$cdsim" area --design "$d" "${args[@]}" --cache "$work/cache" --json "$work/$d.json" >/dev/null
 done
@@ -34,11 +34,11 @@ def expect(cond, what):
 cd, cd_blocks = load("cd-linear")
 cp, cp_blocks = load("cd-persp")
 dv, dv_blocks = load("divide")
-af, af_blocks = load("affine")
-quad = os.path.exists(f"{work}/quad-sub8.json")
-qs, qs_blocks = load("quad-sub8") if quad else ({}, {})
+long = os.path.exists(f"{work}/quad-sub8.json")
+af, af_blocks = load("affine") if long else ({}, {})
+qs, qs_blocks = load("quad-sub8") if long else ({}, {})
 for name, (r, b) in {"cd-linear": (cd, cd_blocks), "cd-persp": (cp, cp_blocks), "divide": (dv, dv_blocks),
-                     "affine": (af, af_blocks), **({"quad-sub8": (qs, qs_blocks)} if quad else {})}.items():
+                     **({"affine": (af, af_blocks), "quad-sub8": (qs, qs_blocks)} if long else {})}.items():
     total = sum(b.values())
     expect(abs(total - r["logic_area_um2"]) <= 1e-6 * total, f"{name}: blocks sum to the logic area ({total:.0f} um^2)")
 expect(cd["sram_bits"] > 0, "cd-linear has a table")
@@ -54,10 +54,11 @@ expect("correction adder" not in dv_blocks, "divide has no correction adder")
 expect(dv_blocks.get("reciprocal", 0) > 0 and dv_blocks.get("pixel multiply", 0) > 0, "divide has a pixel reciprocal and multiply")
 expect(dv_blocks.get("plane accumulators", 0) > 0, "divide has plane accumulators")
 expect(dv_blocks["setup engine"] < cd_blocks["setup engine"], "divide's setup engine has no slope divider, line range or fill")
-expect(af["sram_bits"] == 0, "affine has no table")
-expect(af_blocks.get("reciprocal", 0) == 0 and "pixel multiply" not in af_blocks, "affine has no reciprocal")
-expect(af_blocks.get("affine setup", 0) > 0 and af_blocks.get("plane accumulators", 0) > 0, "affine has its setup and accumulators")
-if quad:
+if long:
+    expect(af["sram_bits"] == 0, "affine has no table")
+    expect(af_blocks.get("reciprocal", 0) == 0 and "pixel multiply" not in af_blocks, "affine has no reciprocal")
+    expect(af_blocks.get("affine setup", 0) > 0 and af_blocks.get("plane accumulators", 0) > 0,
+           "affine has its setup and accumulators")
     expect(qs["sram_bits"] == 0 and "correction adder" not in qs_blocks, "quad-sub8 has no table")
     expect(qs_blocks.get("exact points", 0) > 0 and qs_blocks.get("reciprocal", 0) > 0,
            "quad-sub8 has exact points and their reciprocal")
