@@ -163,18 +163,23 @@ UnitConfig prepare_unit(const Design& design, const Widths& widths, const AreaOp
         "{}: no such liberty file (scripts/setup installs qflow-tech-osu018)", options.liberty));
   UnitConfig c;
   const DerivedWidths derived = derive(widths);
-  // The unit elaborated with this design's hardware only (rtl/cd_scan_unit.sv).
+  // The unit elaborated with this design's hardware only (rtl/cd_scan_unit.sv),
+  // or the adaptive design's unit (rtl/adaptive_unit.sv: its split engine and
+  // an affine-only scan unit, elaborated by the unit itself, at the leaves' widths).
+  c.top = rtl_top(design) == RtlTop::AdaptiveUnit ? "adaptive_unit" : "cd_scan_unit";
   c.has_table = design.kind == Design::Kind::ConstantDepth;
   const bool has_divide = design.kind == Design::Kind::Divide;
   const bool has_sub = design.kind == Design::Kind::Affine && design.subdivision != 0;
   // The reciprocal, reported on its own, is the fill's (in the setup engine)
   // in the table designs, the pixels' (in pixel_divide) in divide and the
   // exact points' in affine-subN and quad-subN.
+  // The adaptive design's is its split engine's (the midpoints' 1/q).
   c.reciprocal_owner = c.has_table ? "setup_engine" : has_divide ? "pixel_divide"
-                       : has_sub ? "exact_points" : "";
+                       : has_sub ? "exact_points" : c.top == "adaptive_unit" ? "adaptive_split" : "";
   std::string parameters;
-  for (const UnitParameter& p : unit_parameters({&design}))
-    parameters += fmt::format("-set {} {} ", p.name, p.value);
+  if (c.top == "cd_scan_unit")
+    for (const UnitParameter& p : unit_parameters({&design}))
+      parameters += fmt::format("-set {} {} ", p.name, p.value);
   parameters += "-set HasObservation 0";
 
   // Every RTL source, in name order, so that the hash is stable.
@@ -183,10 +188,11 @@ UnitConfig prepare_unit(const Design& design, const Widths& widths, const AreaOp
   for (const auto& entry : fs::directory_iterator(rtl_dir))
     if (entry.path().extension() == ".sv") sources.push_back(entry.path());
   std::sort(sources.begin(), sources.end());
-  c.header = rtl_header(widths, "area");
+  c.header = c.top == "adaptive_unit" ? rtl_header(adaptive_leaf_widths(widths), "area, adaptive leaf unit")
+                                      : rtl_header(widths, "area");
   uint64_t hash = fnv1a(kFlowVersion);
   hash = fnv1a(c.header, hash);
-  hash = fnv1a(fmt::format("{} {}", parameters, options.liberty), hash);
+  hash = fnv1a(fmt::format("{} {} {}", c.top, parameters, options.liberty), hash);
   for (const fs::path& source : sources) hash = fnv1a(read_text_file(source), hash);
 
   const fs::path cache = options.cache_dir.empty() ? cache_root("area") : fs::path(options.cache_dir);
@@ -204,10 +210,10 @@ UnitConfig prepare_unit(const Design& design, const Widths& widths, const AreaOp
   c.unit_front = fmt::format(
       "read_verilog -sv -DSYNTHESIS {inc}{src}\n"
       "read_verilog -sv -lib {inc} {rtl}/scanline_table.sv\n"
-      "chparam {p} cd_scan_unit\n"
-      "hierarchy -check -top cd_scan_unit\n",
+      "chparam {p} {top}\n"
+      "hierarchy -check -top {top}\n",
       fmt::arg("inc", include), fmt::arg("src", unit_sources), fmt::arg("rtl", rtl_dir.string()),
-      fmt::arg("p", parameters));
+      fmt::arg("p", parameters), fmt::arg("top", c.top));
   // The same table from flip-flops, synthesised at up to 64 lines.
   c.table_front = fmt::format(
       "read_verilog -sv {inc} {rtl}/scanline_table.sv\n"
@@ -221,18 +227,20 @@ UnitConfig prepare_unit(const Design& design, const Widths& widths, const AreaOp
 
 nlohmann::json block_areas(const std::map<std::string, ModuleStat>& unit, const UnitConfig& config,
                            const std::string& log_path) {
-  // Blocks: the top's submodules by kind (the table is a black box), each
-  // reciprocal counted apart from the block that holds it, and the top's own
-  // cells as control. They sum to the unit's logic.
-  const std::string top = find_module(unit, "cd_scan_unit");
-  const Subtree recip = subtree_of(unit, "reciprocal");  // one per design: fill or pixels
+  // Blocks: the scan unit's submodules by kind (the table is a black box),
+  // each reciprocal counted apart from the block that holds it, and the
+  // unit's own cells as control. They sum to the unit's logic. The adaptive
+  // design's unit adds its split engine, and its own cells (the records) to
+  // control.
+  const Subtree recip = subtree_of(unit, "reciprocal");  // one per design: fill, pixels or midpoints
   static const std::map<std::string, std::string> block_of = {
       {"setup_engine", "setup engine"},     {"column_walker", "column walker"},
       {"correction_adder", "correction adder"}, {"plane_accumulator", "plane accumulators"},
       {"pixel_divide", "pixel multiply"},   {"affine_setup", "affine setup"},
       {"shift_round", "output rounding"},   {"affine_sub_datapath", "subdivision datapath"},
       {"quad_sub_datapath", "subdivision datapath"}, {"exact_points", "exact points"},
-      {"kim_datapath", "Kim datapath"},     {"context_register", "contexts"}};
+      {"kim_datapath", "Kim datapath"},     {"context_register", "contexts"},
+      {"adaptive_split", "split engine"}};
   std::vector<std::string> order;
   std::map<std::string, Subtree> totals;
   const auto add = [&](const std::string& name, double area, int64_t flops) {
@@ -240,22 +248,29 @@ nlohmann::json block_areas(const std::map<std::string, ModuleStat>& unit, const 
     totals[name].area += area;
     totals[name].flops += flops;
   };
-  for (const auto& [sub, count] : unit.at(top).submodules) {
-    const std::string base = base_name(sub);
-    if (base == "scanline_table") continue;
-    const auto it = block_of.find(base);
-    if (it == block_of.end())
-      throw std::runtime_error(fmt::format("area: no block for module '{}' in {}", base, log_path));
-    Subtree t = subtree(unit, sub);
-    if (base == config.reciprocal_owner) {
-      t.area -= recip.area;
-      t.flops -= recip.flops;
+  const std::function<void(const std::string&)> add_blocks = [&](const std::string& top) {
+    for (const auto& [sub, count] : unit.at(top).submodules) {
+      const std::string base = base_name(sub);
+      if (base == "scanline_table") continue;
+      if (base == "cd_scan_unit") {  // the adaptive unit's leaf unit
+        add_blocks(sub);
+        continue;
+      }
+      const auto it = block_of.find(base);
+      if (it == block_of.end())
+        throw std::runtime_error(fmt::format("area: no block for module '{}' in {}", base, log_path));
+      Subtree t = subtree(unit, sub);
+      if (base == config.reciprocal_owner) {
+        t.area -= recip.area;
+        t.flops -= recip.flops;
+      }
+      add(it->second, static_cast<double>(count) * t.area, count * t.flops);
     }
-    add(it->second, static_cast<double>(count) * t.area, count * t.flops);
-  }
+    const auto& control = unit.at(top);
+    add("control", control.own_area, control.own_flops);
+  };
+  add_blocks(find_module(unit, config.top));
   if (recip.area > 0) add("reciprocal", recip.area, recip.flops);
-  const auto& control = unit.at(top);
-  add("control", control.own_area, control.own_flops);
   nlohmann::json blocks = nlohmann::json::array();
   for (const std::string& name : order)
     blocks.push_back({{"name", name}, {"area_um2", totals[name].area}, {"flops", totals[name].flops}});
@@ -300,7 +315,9 @@ AreaReport area_report(const Design& design, const Widths& widths, const UnitCon
 }  // namespace area_detail
 
 AreaReport synthesise_area(const Design& design, const Widths& widths, const AreaOptions& options) {
-  if (options.estimate) return estimate_area(design, widths, options);
+  // The component model is calibrated on the scan unit's designs: the
+  // adaptive design's unit, with its split engine, is always synthesised.
+  if (options.estimate && rtl_top(design) == RtlTop::ScanUnit) return estimate_area(design, widths, options);
   const UnitConfig config = prepare_unit(design, widths, options);
   const fs::path& dir = config.dir;
   const fs::path result_path = dir / "result.json";

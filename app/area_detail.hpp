@@ -26,6 +26,7 @@ struct ModuleStat {
 // One design at one set of widths, as Yosys is given it.
 struct UnitConfig {
   std::filesystem::path dir;      // its cache folder (hash of RTL, widths, design and flow)
+  std::string top;                // cd_scan_unit, or adaptive_unit (model/design.hpp, RtlTop)
   std::string header;             // cd_widths.svh
   std::string unit_front;         // read, chparam and hierarchy of the unit (table a black box)
   std::string table_front;        // the same for the flip-flop table

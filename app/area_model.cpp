@@ -429,7 +429,8 @@ int run_area_model_command(const AreaModelOptions& options) {
   const std::vector<Design> designs = [&] {
     std::vector<Design> out;
     for (const Design& d : options.designs == "all" ? all_designs() : designs_from(options.designs))
-      if (has_rtl(d)) out.push_back(d);
+      // Calibrated on the scan unit's designs; the adaptive unit is synthesised.
+      if (has_rtl(d) && rtl_top(d) == RtlTop::ScanUnit) out.push_back(d);
     return out;
   }();
   const std::string write_path = options.write_path.empty() ? default_area_model_path() : options.write_path;

@@ -1,6 +1,8 @@
 // Build-time generator of the RTL's parameter header: writes cd_widths.svh for
 // one width configuration (widths.def with NAME=VALUE overrides), the same text
-// as `cdsim widths --sv`. The build runs it before Verilator sees the RTL.
+// as `cdsim widths --sv`; with --adaptive-leaf, that of the adaptive design's
+// leaf unit (rtl/adaptive_unit.sv). The build runs it before Verilator sees
+// the RTL.
 #include <fmt/format.h>
 
 #include <fstream>
@@ -12,14 +14,20 @@
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::cerr << "usage: cdsim_widths_header OUT.svh CONFIG [NAME=VALUE...]\n";
+    std::cerr << "usage: cdsim_widths_header OUT.svh CONFIG [--adaptive-leaf] [NAME=VALUE...]\n";
     return 2;
   }
   try {
     cdsim::Widths widths;
-    for (int i = 3; i < argc; ++i) cdsim::apply_setting(widths, argv[i]);
+    bool leaf = false;
+    for (int i = 3; i < argc; ++i) {
+      if (std::string(argv[i]) == "--adaptive-leaf") leaf = true;
+      else cdsim::apply_setting(widths, argv[i]);
+    }
     cdsim::validate(widths);
-    const std::string text = cdsim::rtl_header(widths, argv[2]);
+    const std::string text = leaf ? cdsim::rtl_header(cdsim::adaptive_leaf_widths(widths),
+                                                      std::string(argv[2]) + ", adaptive leaf unit")
+                                  : cdsim::rtl_header(widths, argv[2]);
     // Rewrite only on change, so that Verilator reruns only when a width changed.
     std::ifstream old(argv[1]);
     std::stringstream existing;

@@ -11,13 +11,6 @@ namespace cdsim {
 
 using fx::Wide;
 
-Widths adaptive_leaf_widths(const Widths& widths) {
-  Widths leaf = widths;
-  leaf.subpixel_bits += widths.adapt_depth;
-  leaf.uv_in_frac += widths.adapt_uv_extra;
-  return leaf;
-}
-
 namespace {
 
 // A vertex in the split engine. x, y carry adapt_depth more subpixel bits, q,

@@ -15,10 +15,8 @@
 
 namespace cdsim {
 
-// The widths of the affine unit behind the split engine: vertices with
-// adapt_depth more subpixel bits (a midpoint of midpoints is exact there) and
-// u, v with adapt_uv_extra more fraction bits.
-Widths adaptive_leaf_widths(const Widths& widths);
+// The widths of the affine unit behind the split engine: adaptive_leaf_widths
+// (widths.hpp).
 
 struct AdaptiveLeaf {
   UnitTriangle triangle;  // at adaptive_leaf_widths

@@ -37,13 +37,17 @@ const std::vector<Design>& all_designs() {
   return designs;
 }
 
+RtlTop rtl_top(const Design& design) {
+  return design.kind == Design::Kind::Adaptive ? RtlTop::AdaptiveUnit : RtlTop::ScanUnit;
+}
+
 bool has_rtl(const Design& design) {
   switch (design.kind) {
     case Design::Kind::ConstantDepth:
     case Design::Kind::Divide:
     case Design::Kind::Kim:
-    case Design::Kind::Affine: return true;
-    case Design::Kind::Adaptive: return false;
+    case Design::Kind::Affine:
+    case Design::Kind::Adaptive: return true;
   }
   return false;
 }

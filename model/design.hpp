@@ -27,6 +27,11 @@ struct Design {
 };
 
 const std::vector<Design>& all_designs();
+// The RTL top that implements a design: the scan unit (rtl/cd_scan_unit.sv,
+// one or several designs by parameter and kind_i), or the adaptive design's
+// own unit (rtl/adaptive_unit.sv: its split engine and an affine scan unit).
+enum class RtlTop { ScanUnit, AdaptiveUnit };
+RtlTop rtl_top(const Design& design);
 // Whether rtl/ implements the design (regress and area refuse the others).
 bool has_rtl(const Design& design);
 // The names of the designs with RTL, for messages: "cd-none, cd-linear, ...".

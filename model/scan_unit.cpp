@@ -27,6 +27,12 @@ ScanUnit::ScanUnit(const Design& design, const Widths& widths, int viewport_widt
                                             viewport_height);
 }
 
+void ScanUnit::set_viewport(int viewport_width, int viewport_height) {
+  viewport_width_ = viewport_width;
+  viewport_height_ = viewport_height;
+  if (leaf_unit_) leaf_unit_->set_viewport(viewport_width, viewport_height);
+}
+
 TriangleRecord ScanUnit::run(const UnitTriangle& triangle, std::vector<Fragment>* fragments, int64_t offered) {
   if (design_.kind == Design::Kind::Adaptive) return run_adaptive(triangle, fragments, true);
   TriangleRecord record = compute(triangle, fragments);
@@ -253,23 +259,27 @@ TriangleRecord ScanUnit::run_adaptive(const UnitTriangle& triangle, std::vector<
                                    : leaf_unit_->compute(leaf.triangle, fragments);
     record.pixels += r.pixels;
     record.flags |= r.flags;
-    record.cycles += r.cycles;
     record.setup_cycles += r.setup_cycles;
     record.fill_cycles += r.fill_cycles;
     record.walk_cycles += r.walk_cycles;
     record.record_cycles += r.record_cycles;
-    if (!timed) continue;
-    const int64_t leaf_accepted = leaf_unit_->schedule().last().accept;
-    if (!split_started_) {
-      // The stream's clocks count from the first triangle's acceptance by the
-      // split engine, not its first leaf's by the unit.
-      record.setup_cycles += leaf_accepted - accepted;
-      record.cycles += leaf_accepted - accepted;
-      split_started_ = true;
-    }
-    cycle = leaf_accepted + 1;
+    if (timed) cycle = leaf_unit_->schedule().last().accept + 1;
   }
-  if (timed) split_free_ = cycle + split.tail_cycles;
+  if (!timed) return record;
+  // The engine is done (and can accept the next triangle) in the cycle after
+  // its last node; the triangle's record comes with its last leaf's record or
+  // then, whichever is later (rtl/adaptive_unit.sv). Its clocks run from the
+  // cycle after the last record, the first triangle's from its acceptance;
+  // what the leaves' clocks do not cover is the split engine's, counted as
+  // setup-bound.
+  split_free_ = cycle + split.tail_cycles;
+  const int64_t recorded = std::max(leaf_unit_->schedule().last().record, split_free_);
+  if (!split_started_) last_record_ = accepted - 1;
+  split_started_ = true;
+  record.cycles = recorded - last_record_;
+  record.setup_cycles += record.cycles - (record.setup_cycles + record.fill_cycles + record.walk_cycles +
+                                          record.record_cycles);
+  last_record_ = recorded;
   return record;
 }
 

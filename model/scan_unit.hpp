@@ -67,6 +67,10 @@ class ScanUnit {
   TrianglePhases phases() const { return timing_.phases(work_); }
   const UnitTiming& timing() const { return timing_; }
 
+  // The viewport of the triangles from now on; the schedule goes on (one
+  // stream through the unit, whatever each triangle's viewport: the RTL's).
+  void set_viewport(int viewport_width, int viewport_height);
+
   const ScanlineTable& table() const { return table_; }
   // When set, run() records the setup and every table write of the triangle.
   void trace_blocks(BlockTrace* trace) { trace_ = trace; }
@@ -91,10 +95,10 @@ class ScanUnit {
   UnitSchedule schedule_;
   TriangleWork work_;  // of the last triangle
   BlockTrace* trace_ = nullptr;
-  // adaptive: the affine unit behind the split engine, and the cycle the
-  // split engine can accept the next triangle.
+  // adaptive: the affine unit behind the split engine, the cycle the split
+  // engine can accept the next triangle, and the cycle of the last record.
   std::unique_ptr<ScanUnit> leaf_unit_;
-  int64_t split_free_ = 0;
+  int64_t split_free_ = 0, last_record_ = 0;
   bool split_started_ = false;
 };
 

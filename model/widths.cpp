@@ -100,4 +100,11 @@ std::string describe(const Widths& widths) {
   return out;
 }
 
+Widths adaptive_leaf_widths(const Widths& widths) {
+  Widths leaf = widths;
+  leaf.subpixel_bits += widths.adapt_depth;
+  leaf.uv_in_frac += widths.adapt_uv_extra;
+  return leaf;
+}
+
 }  // namespace cdsim

@@ -47,4 +47,10 @@ void validate(const Widths& widths);
 
 std::string describe(const Widths& widths);  // "subpixel_bits=8 uv_in_frac=8 ..."
 
+// The adaptive design's leaf unit (model/adaptive_split.hpp): vertices with
+// adapt_depth more subpixel bits (a midpoint of midpoints is exact there) and
+// u, v with adapt_uv_extra more fraction bits. Past widths.def's ranges by
+// design; validate() the widths it is made from.
+Widths adaptive_leaf_widths(const Widths& widths);
+
 }  // namespace cdsim

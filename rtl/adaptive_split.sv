@@ -17,6 +17,8 @@
 //   corner-A child is current next, the others pushed) or offer the node.
 // - Offer: the leaf waits for leaf_ready_i; the engine goes on in the cycle
 //   after. tri_done_o follows a triangle's last node, with its flags.
+// - hold_i (the unit behind it holds a fragment): nothing moves, as in the
+//   unit, so that a stall delays everything by one cycle.
 `default_nettype none
 
 module adaptive_split #(
@@ -36,6 +38,9 @@ module adaptive_split #(
 ) (
   input  logic                            clk_i,
   input  logic                            rst_ni,
+  input  logic                            hold_i,
+  // Read while a triangle is in the engine: held from its acceptance to its
+  // done (adaptive_unit.sv registers them).
   input  logic [13:0]                     viewport_width_i,
   input  logic [13:0]                     viewport_height_i,
   input  logic                            tri_valid_i,
@@ -55,7 +60,8 @@ module adaptive_split #(
   output logic [3*LeafUvBits-1:0]         leaf_v_o,
   output logic [7:0]                      leaf_depth_o,
   // The cycle after a triangle's last node (a leaf taken or a sub-triangle
-  // dropped), with its flags: {output saturated, depth range}.
+  // dropped), with its flags: {output saturated, depth range}; held with
+  // hold_i.
   output logic                            tri_done_o,
   output logic [1:0]                      tri_flags_o
 );
@@ -199,7 +205,7 @@ module adaptive_split #(
   reciprocal #(.RecipBits(RecipBits), .Latency(RecipLatency), .TagBits(ExpBits + 3)) u_reciprocal (
     .clk_i      (clk_i),
     .rst_ni     (rst_ni),
-    .advance_i  (1'b1),
+    .advance_i  (!hold_i),
     .valid_i    (issue_valid),
     .mantissa_i (operand_mantissa),
     .tag_i      ({operand_depth_out, issue_index, operand_exponent}),
@@ -283,7 +289,7 @@ module adaptive_split #(
   assign leaf_depth_o = cur_depth;
   assign tri_done_o = done_q;
   assign tri_flags_o = flags_q;
-  assign tri_ready_o = state_q == StIdle;
+  assign tri_ready_o = state_q == StIdle && !hold_i;
 
   // ------------------------------------------------------------------- state
   logic [StackBits-1:0] top;
@@ -331,7 +337,7 @@ module adaptive_split #(
       flags_q <= '0;
       eval_count_q <= '0;
       done_q <= 1'b0;
-    end else begin
+    end else if (!hold_i) begin
       done_q <= 1'b0;
       case (state_q)
         StIdle: if (tri_valid_i) begin

@@ -25,6 +25,9 @@
 #include "Vcd_scan_unit_default.h"
 #include "Vcd_scan_unit_narrow.h"
 #include "Vcd_scan_unit_wide.h"
+#include "Vadaptive_unit_default.h"
+#include "Vadaptive_unit_narrow.h"
+#include "Vadaptive_unit_wide.h"
 #include "bench.hpp"
 #include "evaluate.hpp"
 #include "interrupt.hpp"
@@ -84,8 +87,9 @@ Widths widths_of(const std::string& config) {
 std::vector<const Design*> designs_for(const std::string& name) {
   std::vector<const Design*> out;
   if (name == "mix") {
+    // Every design of the scan unit; the adaptive design has a unit of its own.
     for (const Design& d : all_designs())
-      if (has_rtl(d)) out.push_back(&d);
+      if (has_rtl(d) && rtl_top(d) == RtlTop::ScanUnit) out.push_back(&d);
     return out;
   }
   // One design, or a comma-separated list taken in turn like mix.
@@ -97,6 +101,12 @@ std::vector<const Design*> designs_for(const std::string& name) {
           rtl_design_names()));
     out.push_back(&d);
   }
+  for (const Design* d : out)
+    if (rtl_top(*d) != rtl_top(*out.front()))
+      throw std::invalid_argument(fmt::format(
+          "--design {}: {} and {} are different units (rtl/adaptive_unit.sv, rtl/cd_scan_unit.sv); "
+          "regress them one at a time",
+          name, out.front()->name, d->name));
   return out;
 }
 
@@ -129,9 +139,12 @@ std::vector<int64_t> hang_limits(const std::vector<Job>& jobs, const Widths& wid
   limits.reserve(jobs.size());
   for (const Job& job : jobs) {
     throw_if_interrupted();
-    auto& unit = units[{job.design->name, job.viewport_width, job.viewport_height}];
+    // The adaptive unit's clocks: one stream whatever the viewports, as the RTL's.
+    const bool adaptive = job.design->kind == Design::Kind::Adaptive;
+    auto& unit = units[{job.design->name, adaptive ? 0 : job.viewport_width, adaptive ? 0 : job.viewport_height}];
     if (!unit)
       unit = std::make_unique<ScanUnit>(*job.design, widths, job.viewport_width, job.viewport_height);
+    unit->set_viewport(job.viewport_width, job.viewport_height);
     fragments.clear();
     const TriangleRecord record = unit->run(job.triangle, &fragments);
     // Its clocks on this design's own schedule, plus a setup: at most what it
@@ -279,11 +292,16 @@ int regress(const Widths* given) {
                                                 source, options.design,
                                                 options.backpressure, options.shard, options.only);
   }
-  const RunBench run_custom =
-      builtin.empty() || coverage ? load_custom_rtl(widths, options.rtl_cache, coverage_build) : nullptr;
+  const bool adaptive = rtl_top(*designs.front()) == RtlTop::AdaptiveUnit;
+  const RunBench run_custom = builtin.empty() || coverage
+                                  ? load_custom_rtl(widths, options.rtl_cache, coverage_build, adaptive)
+                                  : nullptr;
   InterruptWatch watch("interrupt_watch");
   int status = 0;
   if (run_custom) status = run_custom(&jobs, &widths, &bench_options);
+  else if (adaptive && builtin == "default") status = run_bench<Vadaptive_unit_default>(jobs, widths, bench_options);
+  else if (adaptive && builtin == "narrow") status = run_bench<Vadaptive_unit_narrow>(jobs, widths, bench_options);
+  else if (adaptive) status = run_bench<Vadaptive_unit_wide>(jobs, widths, bench_options);
   else if (builtin == "default") status = run_bench<Vcd_scan_unit_default>(jobs, widths, bench_options);
   else if (builtin == "narrow") status = run_bench<Vcd_scan_unit_narrow>(jobs, widths, bench_options);
   else status = run_bench<Vcd_scan_unit_wide>(jobs, widths, bench_options);

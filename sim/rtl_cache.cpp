@@ -3,9 +3,11 @@
 //   <cache>/<model key>/       one width configuration, verilated and compiled;
 //                              built in <cache>/tmp-*, renamed into place when
 //                              complete, so a folder under this name is finished
-//     cd_widths.svh            rtl_header(widths)
+//     cd_widths.svh            rtl_header(widths); for the adaptive unit
+//                              (rtl/adaptive_unit.sv), its leaf unit's
 //     inputs.txt               the widths and everything else the key covers
-//     verilated/               Verilator's C++ (Vcd_scan_unit_custom*)
+//     verilated/               Verilator's C++ (Vcd_scan_unit_custom*, whichever the top:
+//                              the adaptive unit has the scan unit's ports)
 //     obj/                     its objects, compiled as cdsim_rtl's plus -fPIC
 //     log/                     verilator.log and one log per compile
 //     bench-<bench key>.so     bench_entry.cpp and obj/, for one cdsim build
@@ -236,15 +238,21 @@ std::vector<std::string> coverage_args(CoverageBuild coverage) {
   return {};
 }
 
+// The top and its sources: the scan unit, or the adaptive design's unit.
+const char* top_of(bool adaptive) { return adaptive ? build::kAdaptiveTop : build::kRtlTop; }
+std::vector<std::string> sources_of(bool adaptive) {
+  return adaptive ? strings(build::kAdaptiveSources) : strings(build::kRtlSources);
+}
+
 // Verilator as verilate() in sim/CMakeLists.txt runs it for the built-in configurations.
 std::vector<std::string> verilator_command(const fs::path& verilated, const fs::path& header_dir,
-                                           CoverageBuild coverage) {
+                                           CoverageBuild coverage, bool adaptive) {
   std::vector<std::string> argv = {build::kVerilatorBin, "--compiler", build::kVerilatorCompiler,
                                    "--prefix", kPrefix, "--Mdir", verilated.string(),
-                                   "--make", "cmake", "--top", build::kRtlTop, "--trace-fst", "--sc",
+                                   "--make", "cmake", "--top", top_of(adaptive), "--trace-fst", "--sc",
                                    "-y", header_dir.string(), "-y", kRtlDir};
   for (const std::string& a : strings(build::kVerilatorArgs)) argv.push_back(a);
-  for (const std::string& s : strings(build::kRtlSources)) argv.push_back(s);
+  for (const std::string& s : sources_of(adaptive)) argv.push_back(s);
   for (const std::string& a : coverage_args(coverage)) argv.push_back(a);
   return argv;
 }
@@ -259,11 +267,11 @@ std::vector<std::string> model_flags(CoverageBuild coverage) {
 }
 
 // What the model key covers besides the header and the RTL.
-std::string model_recipe(CoverageBuild coverage) {
+std::string model_recipe(CoverageBuild coverage, bool adaptive) {
   std::string recipe = fmt::format(
       "verilator: {} {} --prefix {} --top {} --trace-fst --sc {} {}\ncompiler: {} ({})\nflags: {}\n",
-      build::kVerilatorBin, build::kVerilatorVersion, kPrefix, build::kRtlTop,
-      joined(strings(build::kVerilatorArgs)), joined(strings(build::kRtlSources)),
+      build::kVerilatorBin, build::kVerilatorVersion, kPrefix, top_of(adaptive),
+      joined(strings(build::kVerilatorArgs)), joined(sources_of(adaptive)),
       build::kCompiler, build::kCompilerVersion, joined(model_flags(coverage)));
   if (coverage != CoverageBuild::None)
     recipe += fmt::format("coverage: {} {}\n", joined(coverage_args(coverage)),
@@ -272,7 +280,7 @@ std::string model_recipe(CoverageBuild coverage) {
 }
 
 void build_model(const fs::path& root, const fs::path& model_dir, const std::string& header,
-                 const std::string& inputs, CoverageBuild coverage) {
+                 const std::string& inputs, CoverageBuild coverage, bool adaptive) {
   const fs::path tmp = root / fmt::format("tmp-{}-{}", model_dir.filename().string(), getpid());
   fs::remove_all(tmp);
   fs::create_directories(tmp / "log");
@@ -280,7 +288,9 @@ void build_model(const fs::path& root, const fs::path& model_dir, const std::str
   write_file_atomic(tmp / "cd_widths.svh", header);
   write_file_atomic(tmp / "inputs.txt", inputs);
   const auto start = std::chrono::steady_clock::now();
-  run_steps({{verilator_command(tmp / "verilated", tmp, coverage), tmp / "log/verilator.log", "Verilator"}}, 1);
+  run_steps({{verilator_command(tmp / "verilated", tmp, coverage, adaptive), tmp / "log/verilator.log",
+              "Verilator"}},
+            1);
   std::vector<Step> compiles;
   for (const fs::path& source : files_in(tmp / "verilated", ".cpp")) {
     const std::string name = source.stem().string();
@@ -371,12 +381,14 @@ void run_tool(const std::vector<std::string>& argv, const std::string& log, cons
   run_steps({{argv, log, what}}, 1);
 }
 
-RunBench load_custom_rtl(const Widths& widths, const std::string& cache_dir, CoverageBuild coverage) {
-  const std::string header = rtl_header(widths, "custom");
+RunBench load_custom_rtl(const Widths& widths, const std::string& cache_dir, CoverageBuild coverage,
+                         bool adaptive) {
+  const std::string header = adaptive ? rtl_header(adaptive_leaf_widths(widths), "custom, adaptive leaf unit")
+                                      : rtl_header(widths, "custom");
   const fs::path root = fs::absolute(cache_dir.empty() ? default_rtl_cache_dir() : cache_dir);
   fs::create_directories(root);
 
-  std::string inputs = fmt::format("widths: {}\n{}", describe(widths), model_recipe(coverage));
+  std::string inputs = fmt::format("widths: {}\n{}", describe(widths), model_recipe(coverage, adaptive));
   uint64_t model_key = fnv1a(kCacheVersion);
   model_key = fnv1a(header, model_key);
   for (const fs::path& sv : files_in(kRtlDir, ".sv")) {
@@ -399,13 +411,14 @@ RunBench load_custom_rtl(const Widths& widths, const std::string& cache_dir, Cov
   if (!fs::exists(model_dir)) {
     remove_stale(root, "tmp-");
     std::cout << fmt::format(
-        "regress: building the RTL{} for widths {} in {} (first use; about {:.0f} s)\n",
+        "regress: building the RTL{}{} for widths {} in {} (first use; about {:.0f} s)\n",
+        adaptive ? " of the adaptive unit" : "",
         coverage == CoverageBuild::All     ? " with coverage"
         : coverage == CoverageBuild::Lines ? " with line coverage"
                                            : "",
         describe(widths), model_dir.string(), timings.model + timings.bench);
     std::cout.flush();
-    build_model(root, model_dir, header, inputs, coverage);
+    build_model(root, model_dir, header, inputs, coverage, adaptive);
     timings.model = seconds_since(start);
     const auto bench_start = std::chrono::steady_clock::now();
     build_bench(model_dir, library);

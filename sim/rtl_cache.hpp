@@ -27,8 +27,10 @@ using RunBench = int (*)(const std::vector<Job>* jobs, const Widths* widths,
 // branch and toggle points; Lines leaves out toggle points, which makes the
 // build and the run several times faster.
 enum class CoverageBuild { None, Lines, All };
+// `adaptive`: the adaptive design's unit (rtl/adaptive_unit.sv), whose header
+// is its leaf unit's.
 RunBench load_custom_rtl(const Widths& widths, const std::string& cache_dir,
-                         CoverageBuild coverage = CoverageBuild::None);
+                         CoverageBuild coverage = CoverageBuild::None, bool adaptive = false);
 
 // Runs one tool (argv[0] looked up on PATH), its output to `log`; throws
 // naming `what`, the exit status and the log's first lines when it fails.

@@ -127,6 +127,11 @@ int run_vectors_command(const VectorsOptions& given) {
     apply_settings(widths, o.settings);
     validate(widths);
     const std::vector<const Design*> designs = designs_for(o.design);
+    if (rtl_top(*designs.front()) != RtlTop::ScanUnit)
+      throw std::invalid_argument(fmt::format(
+          "--design {}: the vectors replay the scan unit (rtl/cd_scan_unit.sv); the adaptive design's unit "
+          "(rtl/adaptive_unit.sv) is checked by cdsim regress",
+          o.design));
     // The unit elaborates only the hardware of the designs in the set.
     std::vector<const Design*> present;
     for (const Design* d : designs)

@@ -8,8 +8,9 @@
 # correction adder, and a pixel reciprocal, multiply and plane accumulators;
 # affine has no table and no reciprocal at all, and its own setup; quad-sub8
 # has no table and no per-pixel multiply, and exact points (a reciprocal) and
-# its subdivision datapath.
-# affine and quad-sub8 only with a fourth argument "long" (the long suite: CI's time).
+# its subdivision datapath; adaptive is affine's blocks (its leaf unit) plus
+# a split engine and the midpoints' reciprocal.
+# affine, quad-sub8 and adaptive only with a fourth argument "long" (the long suite: CI's time).
 # Usage: check_design_area.sh CDSIM WORKDIR "NARROW SETTINGS" [long]
 set -euo pipefail
 cdsim=$1 work=$2 narrow=$3 scope=${4:-ci}
@@ -17,7 +18,7 @@ rm -rf "$work" && mkdir -p "$work"
 args=()
 for s in $narrow; do args+=(--set "$s"); done
 designs=(cd-linear cd-persp divide)
-[[ $scope == long ]] && designs+=(affine quad-sub8)
+[[ $scope == long ]] && designs+=(affine quad-sub8 adaptive)
 for d in "${designs[@]}"; do
   "$cdsim" area --design "$d" "${args[@]}" --cache "$work/cache" --json "$work/$d.json" >/dev/null
 done
@@ -37,8 +38,10 @@ dv, dv_blocks = load("divide")
 long = os.path.exists(f"{work}/quad-sub8.json")
 af, af_blocks = load("affine") if long else ({}, {})
 qs, qs_blocks = load("quad-sub8") if long else ({}, {})
+ad, ad_blocks = load("adaptive") if long else ({}, {})
 for name, (r, b) in {"cd-linear": (cd, cd_blocks), "cd-persp": (cp, cp_blocks), "divide": (dv, dv_blocks),
-                     **({"affine": (af, af_blocks), "quad-sub8": (qs, qs_blocks)} if long else {})}.items():
+                     **({"affine": (af, af_blocks), "quad-sub8": (qs, qs_blocks), "adaptive": (ad, ad_blocks)}
+                        if long else {})}.items():
     total = sum(b.values())
     expect(abs(total - r["logic_area_um2"]) <= 1e-6 * total, f"{name}: blocks sum to the logic area ({total:.0f} um^2)")
 expect(cd["sram_bits"] > 0, "cd-linear has a table")
@@ -65,6 +68,11 @@ if long:
     expect(qs_blocks.get("subdivision datapath", 0) > 0 and "pixel multiply" not in qs_blocks,
            "quad-sub8 has its subdivision datapath and no per-pixel multiply")
     expect("plane accumulators" not in qs_blocks, "quad-sub8's point accumulators are in its exact points")
+    expect(ad["sram_bits"] == 0, "adaptive has no table")
+    expect(set(ad_blocks) == set(af_blocks) | {"split engine", "reciprocal"},
+           f"adaptive has affine's blocks, a split engine and a reciprocal ({sorted(ad_blocks)})")
+    # Its leaf unit has adapt_depth more subpixel bits and adapt_uv_extra more u, v bits than affine's.
+    expect(ad_blocks["affine setup"] > af_blocks["affine setup"], "adaptive's leaf unit is wider than affine's")
 sys.exit(1 if failures else 0)
 PY
 echo PASS

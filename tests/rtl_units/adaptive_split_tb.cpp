@@ -106,6 +106,7 @@ uint64_t check_adaptive_split(const Options& options, const std::string& name, i
   dut.viewport_height_i = kHeight;
   dut.tri_valid_i = 0;
   dut.leaf_ready_i = 0;
+  dut.hold_i = 0;  // the unit's hold: checked in the adaptive unit's regressions
   dut.rst_ni = 0;
   bench.tick();
   dut.rst_ni = 1;
