@@ -70,8 +70,8 @@ module adaptive_split #(
   localparam int NodeQBits   = QVertexBits + Depth;          // unsigned
   localparam int BigBits     = QVertexBits + 1 + UvBits + Depth;  // signed U = u q, scaled
   localparam int DepthBits   = 8;
-  localparam int StackDepth  = 3 * Depth + 3;  // 3 per level, and room for a push at depth 0
-  localparam int StackBits   = $clog2(StackDepth + 1) + 1;
+  localparam int Levels      = Depth > 0 ? Depth : 1;         // nodes split at depth 0 .. Depth - 1
+  localparam int LevelBits   = $clog2(Levels + 1);
   localparam int ExpBits     = $clog2(NodeQBits) + 1;
   localparam int ProductBits = BigBits + RecipBits + 2;
   localparam int ShiftBits   = ExpBits + 8;
@@ -90,17 +90,18 @@ module adaptive_split #(
   logic signed [LeafUvBits-1:0]    cur_u [3], cur_v [3];
   logic        [DepthBits-1:0]     cur_depth;
 
-  logic signed [LeafCoordBits-1:0] root_x [3], root_y [3];
-  logic        [NodeQBits-1:0]     root_q [3];
-  logic signed [LeafUvBits-1:0]    root_u [3], root_v [3];
-
-  // The stack, one entry per node, its three vertices at 3 s + k.
-  logic signed [LeafCoordBits-1:0] st_x [3*StackDepth], st_y [3*StackDepth];
-  logic        [NodeQBits-1:0]     st_q [3*StackDepth];
-  logic signed [BigBits-1:0]       st_bu [3*StackDepth], st_bv [3*StackDepth];
-  logic signed [LeafUvBits-1:0]    st_u [3*StackDepth], st_v [3*StackDepth];
-  logic        [DepthBits-1:0]     st_depth [StackDepth];
-  logic        [StackBits-1:0]     sp_q;
+  // The levels (the depth-first walk's stack, one entry per depth): level d
+  // holds the six vertices of the node split at depth d, at 6 d + slot
+  // (slots 0-2 its vertices, 3-5 its edge midpoints m0, m1, m2; level 0's
+  // first three are the triangle itself), which of its children comes next
+  // (1 B's, 2 C's, 3 the middle; A's is taken as it splits), and whether any
+  // is left. The deepest level with one left is the stack's top.
+  logic signed [LeafCoordBits-1:0] lv_x [6*Levels], lv_y [6*Levels];
+  logic        [NodeQBits-1:0]     lv_q [6*Levels];
+  logic signed [BigBits-1:0]       lv_bu [6*Levels], lv_bv [6*Levels];
+  logic signed [LeafUvBits-1:0]    lv_u [6*Levels], lv_v [6*Levels];
+  logic        [1:0]               lv_next [Levels];
+  logic        [Levels-1:0]        lv_open_q;
 
   // Midpoint j lies on the edge opposite vertex j.
   logic signed [LeafCoordBits-1:0] mid_x [3], mid_y [3];
@@ -292,33 +293,64 @@ module adaptive_split #(
   assign tri_ready_o = state_q == StIdle && !hold_i;
 
   // ------------------------------------------------------------------- state
-  logic [StackBits-1:0] top;
-  assign top = sp_q - StackBits'(1);
+  // Vertex k of child c (0 A's, 1 B's, 2 C's, 3 the middle) among its
+  // parent's six: A (v0, m2, m1), B (m2, v1, m0), C (m1, m0, v2), the
+  // middle (m2, m0, m1), each with the parent's orientation.
+  function automatic logic [2:0] child_slot(input logic [1:0] child, input logic [1:0] k);
+    logic [8:0] slots;  // vertex 0's slot in the low bits
+    begin
+      case (child)
+        2'd0: slots = {3'd4, 3'd5, 3'd0};
+        2'd1: slots = {3'd3, 3'd1, 3'd5};
+        2'd2: slots = {3'd2, 3'd3, 3'd4};
+        default: slots = {3'd4, 3'd3, 3'd5};
+      endcase
+      child_slot = slots[3 * k +: 3];
+    end
+  endfunction
 
-  // The next node after this one is done: the stack's top, else (nothing
-  // sent) the whole triangle, else idle.
+  logic                 any_open;
+  logic [LevelBits-1:0] open_level;  // the deepest level with a child left
+  logic [1:0]           open_child;
+  logic [LevelBits-1:0] split_level;
+  always_comb begin
+    any_open = 1'b0;
+    open_level = '0;
+    for (int l = 0; l < Levels; l++)
+      if (lv_open_q[l]) begin
+        any_open = 1'b1;
+        open_level = LevelBits'(l);
+      end
+    open_child = lv_next[open_level];
+    split_level = LevelBits'(cur_depth);
+  end
+
+  // The next node after this one is done: the deepest level's next child,
+  // else (nothing sent) the whole triangle, else idle.
   task automatic next_node(input logic leaf_sent);
     begin
-      if (sp_q != '0) begin
+      if (any_open) begin
         for (int k = 0; k < 3; k++) begin
-          cur_x[k] <= st_x[3 * top + k];
-          cur_y[k] <= st_y[3 * top + k];
-          cur_q[k] <= st_q[3 * top + k];
-          cur_bu[k] <= st_bu[3 * top + k];
-          cur_bv[k] <= st_bv[3 * top + k];
-          cur_u[k] <= st_u[3 * top + k];
-          cur_v[k] <= st_v[3 * top + k];
+          cur_x[k] <= lv_x[6 * open_level + child_slot(open_child, 2'(k))];
+          cur_y[k] <= lv_y[6 * open_level + child_slot(open_child, 2'(k))];
+          cur_q[k] <= lv_q[6 * open_level + child_slot(open_child, 2'(k))];
+          cur_bu[k] <= lv_bu[6 * open_level + child_slot(open_child, 2'(k))];
+          cur_bv[k] <= lv_bv[6 * open_level + child_slot(open_child, 2'(k))];
+          cur_u[k] <= lv_u[6 * open_level + child_slot(open_child, 2'(k))];
+          cur_v[k] <= lv_v[6 * open_level + child_slot(open_child, 2'(k))];
         end
-        cur_depth <= st_depth[32'(top)];
-        sp_q <= top;
+        cur_depth <= DepthBits'(open_level) + DepthBits'(1);
+        if (open_child == 2'd3) lv_open_q[open_level] <= 1'b0;
+        else lv_next[open_level] <= open_child + 2'd1;
         state_q <= StNode;
       end else if (!leaf_sent && !any_leaf_q) begin
+        // Every sub-triangle was dropped: the triangle was split, so level 0 holds it.
         for (int k = 0; k < 3; k++) begin
-          cur_x[k] <= root_x[k];
-          cur_y[k] <= root_y[k];
-          cur_q[k] <= root_q[k];
-          cur_u[k] <= root_u[k];
-          cur_v[k] <= root_v[k];
+          cur_x[k] <= lv_x[k];
+          cur_y[k] <= lv_y[k];
+          cur_q[k] <= lv_q[k];
+          cur_u[k] <= lv_u[k];
+          cur_v[k] <= lv_v[k];
         end
         cur_depth <= '0;
         state_q <= StOffer;
@@ -332,7 +364,7 @@ module adaptive_split #(
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       state_q <= StIdle;
-      sp_q <= '0;
+      lv_open_q <= '0;
       any_leaf_q <= 1'b0;
       flags_q <= '0;
       eval_count_q <= '0;
@@ -359,11 +391,6 @@ module adaptive_split #(
             cur_bv[k] <= (BigBits'($signed({1'b0, q_vertex[k]})) * BigBits'(in_v_q[k])) <<< Depth;
             cur_u[k] <= LeafUvBits'(in_u_q[k]) <<< UvExtra;
             cur_v[k] <= LeafUvBits'(in_v_q[k]) <<< UvExtra;
-            root_x[k] <= LeafCoordBits'(in_x_q[k]) <<< Depth;
-            root_y[k] <= LeafCoordBits'(in_y_q[k]) <<< Depth;
-            root_q[k] <= NodeQBits'(q_vertex[k]) << Depth;
-            root_u[k] <= LeafUvBits'(in_u_q[k]) <<< UvExtra;
-            root_v[k] <= LeafUvBits'(in_v_q[k]) <<< UvExtra;
           end
           cur_depth <= '0;
           any_leaf_q <= 1'b0;
@@ -403,36 +430,23 @@ module adaptive_split #(
           if (eval_count_q == 8'(RecipLatency + 4)) begin
             eval_count_q <= '0;
             if (split) begin
-              // Corner A's child is current; B's, C's and the middle wait, B's on top.
+              // Corner A's child is current; B's, C's and the middle wait in this level.
               cur_x[1] <= mid_x[2]; cur_y[1] <= mid_y[2]; cur_q[1] <= mid_q[2];
               cur_bu[1] <= mid_bu[2]; cur_bv[1] <= mid_bv[2]; cur_u[1] <= mid_u[2]; cur_v[1] <= mid_v[2];
               cur_x[2] <= mid_x[1]; cur_y[2] <= mid_y[1]; cur_q[2] <= mid_q[1];
               cur_bu[2] <= mid_bu[1]; cur_bv[2] <= mid_bv[1]; cur_u[2] <= mid_u[1]; cur_v[2] <= mid_v[1];
               cur_depth <= cur_depth + DepthBits'(1);
-              // sp: the middle (m2, m0, m1); sp + 1: C's (m1, m0, C); sp + 2: B's (m2, B, m0).
-              for (int n = 0; n < 3; n++) st_depth[32'(sp_q) + n] <= cur_depth + DepthBits'(1);
-              st_x[3 * sp_q + 0] <= mid_x[2]; st_x[3 * sp_q + 1] <= mid_x[0]; st_x[3 * sp_q + 2] <= mid_x[1];
-              st_y[3 * sp_q + 0] <= mid_y[2]; st_y[3 * sp_q + 1] <= mid_y[0]; st_y[3 * sp_q + 2] <= mid_y[1];
-              st_q[3 * sp_q + 0] <= mid_q[2]; st_q[3 * sp_q + 1] <= mid_q[0]; st_q[3 * sp_q + 2] <= mid_q[1];
-              st_bu[3 * sp_q + 0] <= mid_bu[2]; st_bu[3 * sp_q + 1] <= mid_bu[0]; st_bu[3 * sp_q + 2] <= mid_bu[1];
-              st_bv[3 * sp_q + 0] <= mid_bv[2]; st_bv[3 * sp_q + 1] <= mid_bv[0]; st_bv[3 * sp_q + 2] <= mid_bv[1];
-              st_u[3 * sp_q + 0] <= mid_u[2]; st_u[3 * sp_q + 1] <= mid_u[0]; st_u[3 * sp_q + 2] <= mid_u[1];
-              st_v[3 * sp_q + 0] <= mid_v[2]; st_v[3 * sp_q + 1] <= mid_v[0]; st_v[3 * sp_q + 2] <= mid_v[1];
-              st_x[3 * sp_q + 3] <= mid_x[1]; st_x[3 * sp_q + 4] <= mid_x[0]; st_x[3 * sp_q + 5] <= cur_x[2];
-              st_y[3 * sp_q + 3] <= mid_y[1]; st_y[3 * sp_q + 4] <= mid_y[0]; st_y[3 * sp_q + 5] <= cur_y[2];
-              st_q[3 * sp_q + 3] <= mid_q[1]; st_q[3 * sp_q + 4] <= mid_q[0]; st_q[3 * sp_q + 5] <= cur_q[2];
-              st_bu[3 * sp_q + 3] <= mid_bu[1]; st_bu[3 * sp_q + 4] <= mid_bu[0]; st_bu[3 * sp_q + 5] <= cur_bu[2];
-              st_bv[3 * sp_q + 3] <= mid_bv[1]; st_bv[3 * sp_q + 4] <= mid_bv[0]; st_bv[3 * sp_q + 5] <= cur_bv[2];
-              st_u[3 * sp_q + 3] <= mid_u[1]; st_u[3 * sp_q + 4] <= mid_u[0]; st_u[3 * sp_q + 5] <= cur_u[2];
-              st_v[3 * sp_q + 3] <= mid_v[1]; st_v[3 * sp_q + 4] <= mid_v[0]; st_v[3 * sp_q + 5] <= cur_v[2];
-              st_x[3 * sp_q + 6] <= mid_x[2]; st_x[3 * sp_q + 7] <= cur_x[1]; st_x[3 * sp_q + 8] <= mid_x[0];
-              st_y[3 * sp_q + 6] <= mid_y[2]; st_y[3 * sp_q + 7] <= cur_y[1]; st_y[3 * sp_q + 8] <= mid_y[0];
-              st_q[3 * sp_q + 6] <= mid_q[2]; st_q[3 * sp_q + 7] <= cur_q[1]; st_q[3 * sp_q + 8] <= mid_q[0];
-              st_bu[3 * sp_q + 6] <= mid_bu[2]; st_bu[3 * sp_q + 7] <= cur_bu[1]; st_bu[3 * sp_q + 8] <= mid_bu[0];
-              st_bv[3 * sp_q + 6] <= mid_bv[2]; st_bv[3 * sp_q + 7] <= cur_bv[1]; st_bv[3 * sp_q + 8] <= mid_bv[0];
-              st_u[3 * sp_q + 6] <= mid_u[2]; st_u[3 * sp_q + 7] <= cur_u[1]; st_u[3 * sp_q + 8] <= mid_u[0];
-              st_v[3 * sp_q + 6] <= mid_v[2]; st_v[3 * sp_q + 7] <= cur_v[1]; st_v[3 * sp_q + 8] <= mid_v[0];
-              sp_q <= sp_q + StackBits'(3);
+              for (int k = 0; k < 3; k++) begin
+                lv_x[6 * split_level + k] <= cur_x[k];     lv_x[6 * split_level + 3 + k] <= mid_x[k];
+                lv_y[6 * split_level + k] <= cur_y[k];     lv_y[6 * split_level + 3 + k] <= mid_y[k];
+                lv_q[6 * split_level + k] <= cur_q[k];     lv_q[6 * split_level + 3 + k] <= mid_q[k];
+                lv_bu[6 * split_level + k] <= cur_bu[k];   lv_bu[6 * split_level + 3 + k] <= mid_bu[k];
+                lv_bv[6 * split_level + k] <= cur_bv[k];   lv_bv[6 * split_level + 3 + k] <= mid_bv[k];
+                lv_u[6 * split_level + k] <= cur_u[k];     lv_u[6 * split_level + 3 + k] <= mid_u[k];
+                lv_v[6 * split_level + k] <= cur_v[k];     lv_v[6 * split_level + 3 + k] <= mid_v[k];
+              end
+              lv_next[split_level] <= 2'd1;
+              lv_open_q[split_level] <= 1'b1;
               state_q <= StNode;
             end else begin
               state_q <= StOffer;
