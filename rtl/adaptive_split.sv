@@ -14,7 +14,7 @@
 // - Eval: the midpoints registered in the node cycle, three reciprocals
 //   issued in the next three cycles, each result multiplied and narrowed in
 //   the cycle it arrives, the tests in the cycle after the last: split (the
-//   corner-A child is current next, the others pushed) or offer the node.
+//   corner-A child is current next, the others wait in its level) or offer the node.
 // - Offer: the leaf waits for leaf_ready_i; the engine goes on in the cycle
 //   after. tri_done_o follows a triangle's last node, with its flags.
 // - hold_i (the unit behind it holds a fragment): nothing moves, as in the
