@@ -318,6 +318,9 @@ AreaReport synthesise_area(const Design& design, const Widths& widths, const Are
   // The component model is calibrated on the scan unit's designs: the
   // adaptive design's unit, with its split engine, is always synthesised.
   if (options.estimate && rtl_top(design) == RtlTop::ScanUnit) return estimate_area(design, widths, options);
+  if (options.estimate && !options.quiet)
+    std::cerr << fmt::format("area: {}: the component model does not cover its unit; synthesising it\n",
+                             design.name);
   const UnitConfig config = prepare_unit(design, widths, options);
   const fs::path& dir = config.dir;
   const fs::path result_path = dir / "result.json";

@@ -9,7 +9,7 @@
 # SCALE (default 1) multiplies the random triangles; at 1 (CI) the coverage
 # build has no toggle points (regress --no-toggle: several times quicker to
 # build and run); above 1 (scripts/test --long) it has them, and default and
-# wide widths and the default scene are added.
+# wide widths, the default scene and the adaptive design's unit are added.
 # Usage: check_rtl_coverage.sh CDSIM WORKDIR RTL_CACHE MIN_LINES [SCALE]
 set -euo pipefail
 cdsim=$1 work=$2 cache=$3 min_lines=$4 scale=${5:-1}
@@ -32,7 +32,9 @@ if ((scale > 1)); then
   run --widths default --random $((30 * scale)) --seed 5 --design $fast
   run --widths wide --random $((10 * scale)) --seed 6 --design $fast
   run --widths narrow --scene default --design mix
-  runs=7
+  # The adaptive design's unit (a coverage build of its own: split engine and leaf unit).
+  run --widths narrow --random $((100 * scale)) --seed 8 --design adaptive
+  runs=8
 fi
 "$cdsim" coverage "$work/cov" --min-lines "$min_lines"
 
