@@ -10,15 +10,15 @@
 # has no table and no per-pixel multiply, and exact points (a reciprocal) and
 # its subdivision datapath; adaptive is affine's blocks (its leaf unit) plus
 # a split engine and the midpoints' reciprocal.
-# affine, quad-sub8 and adaptive only with a fourth argument "long" (the long suite: CI's time).
+# cd-persp, affine, quad-sub8 and adaptive only with a fourth argument "long" (the long suite: CI's time).
 # Usage: check_design_area.sh CDSIM WORKDIR "NARROW SETTINGS" [long]
 set -euo pipefail
 cdsim=$1 work=$2 narrow=$3 scope=${4:-ci}
 rm -rf "$work" && mkdir -p "$work"
 args=()
 for s in $narrow; do args+=(--set "$s"); done
-designs=(cd-linear cd-persp divide)
-[[ $scope == long ]] && designs+=(affine quad-sub8 adaptive)
+designs=(cd-linear divide)
+[[ $scope == long ]] && designs+=(cd-persp affine quad-sub8 adaptive)
 for d in "${designs[@]}"; do
   "$cdsim" area --design "$d" "${args[@]}" --cache "$work/cache" --json "$work/$d.json" >/dev/null
 done
@@ -33,31 +33,31 @@ def expect(cond, what):
     print(("ok   " if cond else "FAIL ") + what)
     if not cond: failures.append(what)
 cd, cd_blocks = load("cd-linear")
-cp, cp_blocks = load("cd-persp")
 dv, dv_blocks = load("divide")
 long = os.path.exists(f"{work}/quad-sub8.json")
+cp, cp_blocks = load("cd-persp") if long else ({}, {})
 af, af_blocks = load("affine") if long else ({}, {})
 qs, qs_blocks = load("quad-sub8") if long else ({}, {})
 ad, ad_blocks = load("adaptive") if long else ({}, {})
-for name, (r, b) in {"cd-linear": (cd, cd_blocks), "cd-persp": (cp, cp_blocks), "divide": (dv, dv_blocks),
-                     **({"affine": (af, af_blocks), "quad-sub8": (qs, qs_blocks), "adaptive": (ad, ad_blocks)}
-                        if long else {})}.items():
+for name, (r, b) in {"cd-linear": (cd, cd_blocks), "divide": (dv, dv_blocks),
+                     **({"cd-persp": (cp, cp_blocks), "affine": (af, af_blocks), "quad-sub8": (qs, qs_blocks),
+                         "adaptive": (ad, ad_blocks)} if long else {})}.items():
     total = sum(b.values())
     expect(abs(total - r["logic_area_um2"]) <= 1e-6 * total, f"{name}: blocks sum to the logic area ({total:.0f} um^2)")
 expect(cd["sram_bits"] > 0, "cd-linear has a table")
 expect(cd_blocks.get("correction adder", 0) > 0, "cd-linear has a correction adder")
 expect(cd_blocks.get("reciprocal", 0) > 0, "cd-linear has the fill's reciprocal")
 expect("plane accumulators" not in cd_blocks and "affine setup" not in cd_blocks, "cd-linear has no per-pixel planes")
-expect(cp["sram_bits"] > cd["sram_bits"], f"cd-persp's table words hold eps ({cp['sram_bits']} bits against {cd['sram_bits']})")
-expect(cp_blocks["correction adder"] > cd_blocks["correction adder"], "cd-persp's correction adder has the weight's multiplies and ROM")
-expect(cp_blocks["setup engine"] > cd_blocks["setup engine"], "cd-persp's fill has the eps multiply")
-expect(set(cp_blocks) == set(cd_blocks), "cd-persp has cd-linear's blocks and no others")
 expect(dv["sram_bits"] == 0 and dv["total_area_um2"] == dv["logic_area_um2"], "divide has no table")
 expect("correction adder" not in dv_blocks, "divide has no correction adder")
 expect(dv_blocks.get("reciprocal", 0) > 0 and dv_blocks.get("pixel multiply", 0) > 0, "divide has a pixel reciprocal and multiply")
 expect(dv_blocks.get("plane accumulators", 0) > 0, "divide has plane accumulators")
 expect(dv_blocks["setup engine"] < cd_blocks["setup engine"], "divide's setup engine has no slope divider, line range or fill")
 if long:
+    expect(cp["sram_bits"] > cd["sram_bits"], f"cd-persp's table words hold eps ({cp['sram_bits']} bits against {cd['sram_bits']})")
+    expect(cp_blocks["correction adder"] > cd_blocks["correction adder"], "cd-persp's correction adder has the weight's multiplies and ROM")
+    expect(cp_blocks["setup engine"] > cd_blocks["setup engine"], "cd-persp's fill has the eps multiply")
+    expect(set(cp_blocks) == set(cd_blocks), "cd-persp has cd-linear's blocks and no others")
     expect(af["sram_bits"] == 0, "affine has no table")
     expect(af_blocks.get("reciprocal", 0) == 0 and "pixel multiply" not in af_blocks, "affine has no reciprocal")
     expect(af_blocks.get("affine setup", 0) > 0 and af_blocks.get("plane accumulators", 0) > 0,
