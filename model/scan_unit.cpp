@@ -274,8 +274,6 @@ TriangleRecord ScanUnit::run_adaptive(const UnitTriangle& triangle, std::vector<
   // setup-bound.
   split_free_ = cycle + split.tail_cycles;
   const int64_t recorded = std::max(leaf_unit_->schedule().last().record, split_free_);
-  if (!split_started_) last_record_ = accepted - 1;
-  split_started_ = true;
   record.cycles = recorded - last_record_;
   record.setup_cycles += record.cycles - (record.setup_cycles + record.fill_cycles + record.walk_cycles +
                                           record.record_cycles);

@@ -96,10 +96,10 @@ class ScanUnit {
   TriangleWork work_;  // of the last triangle
   BlockTrace* trace_ = nullptr;
   // adaptive: the affine unit behind the split engine, the cycle the split
-  // engine can accept the next triangle, and the cycle of the last record.
+  // engine can accept the next triangle, and the cycle of the last record
+  // (-1 at first: the first triangle, accepted in cycle 0, counts from there).
   std::unique_ptr<ScanUnit> leaf_unit_;
-  int64_t split_free_ = 0, last_record_ = 0;
-  bool split_started_ = false;
+  int64_t split_free_ = 0, last_record_ = -1;
 };
 
 }  // namespace cdsim

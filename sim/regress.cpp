@@ -133,15 +133,13 @@ SC_MODULE(InterruptWatch) {
 // The bench's hang limit for each job, from the model's run of the job.
 std::vector<int64_t> hang_limits(const std::vector<Job>& jobs, const Widths& widths,
                                  double backpressure) {
-  std::map<std::tuple<std::string, int, int>, std::unique_ptr<ScanUnit>> units;
+  std::map<UnitKey, std::unique_ptr<ScanUnit>> units;
   std::vector<Fragment> fragments;
   std::vector<int64_t> limits;
   limits.reserve(jobs.size());
   for (const Job& job : jobs) {
     throw_if_interrupted();
-    // The adaptive unit's clocks: one stream whatever the viewports, as the RTL's.
-    const bool adaptive = job.design->kind == Design::Kind::Adaptive;
-    auto& unit = units[{job.design->name, adaptive ? 0 : job.viewport_width, adaptive ? 0 : job.viewport_height}];
+    auto& unit = units[unit_key(job)];
     if (!unit)
       unit = std::make_unique<ScanUnit>(*job.design, widths, job.viewport_width, job.viewport_height);
     unit->set_viewport(job.viewport_width, job.viewport_height);

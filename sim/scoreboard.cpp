@@ -14,12 +14,13 @@ std::string describe_job(const Job& job) {
   return text;
 }
 
-ScanUnit& Scoreboard::unit_for(const Job& job) {
-  // The adaptive unit keeps its own schedule: one for all viewports.
+UnitKey unit_key(const Job& job) {
   const bool adaptive = job.design->kind == Design::Kind::Adaptive;
-  auto key = std::make_tuple(job.design->name, adaptive ? 0 : job.viewport_width,
-                             adaptive ? 0 : job.viewport_height);
-  auto& unit = units_[key];
+  return {job.design->name, adaptive ? 0 : job.viewport_width, adaptive ? 0 : job.viewport_height};
+}
+
+ScanUnit& Scoreboard::unit_for(const Job& job) {
+  auto& unit = units_[unit_key(job)];
   if (!unit)
     unit = std::make_unique<ScanUnit>(*job.design, widths_, job.viewport_width,
                                       job.viewport_height);

@@ -129,4 +129,10 @@ class Scoreboard {
 
 std::string describe_job(const Job& job);
 
+// The model unit a job runs on: one per design and viewport, except the
+// adaptive design's, one for all viewports (its schedule is the RTL's one
+// stream; ScanUnit::set_viewport per triangle).
+using UnitKey = std::tuple<std::string, int, int>;
+UnitKey unit_key(const Job& job);
+
 }  // namespace cdsim::rtl
