@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdio>
 #include <iostream>
 #include <limits>
@@ -76,13 +77,25 @@ Sizing size_design(const Design& design, const std::vector<const PreparedScene*>
                    const Widths& user, const ErrorTarget& target,
                    const std::function<void(const std::string&, int)>& on_width) {
   Sizing sizing;
-  // The worst scene's measure; results kept when asked.
+  // A narrower width must not make the datapath saturate where the widest
+  // widths do not: per scene, no flag (but banding, which the table depth
+  // decides) on more triangles than at the widest. Otherwise a loose target,
+  // above all a footprint one, would take widths that clamp the output of
+  // triangles whose footprint is large (docs/choose.md).
+  std::vector<std::array<int64_t, flag::kCount>> allowed;
+  const auto saturates_more = [&](size_t scene, const DesignResult& r) {
+    for (int f = 0; f < flag::kCount; ++f)
+      if ((1u << f) != flag::kBanded && r.flagged_triangles[f] > allowed[scene][f]) return true;
+    return false;
+  };
+  // The worst scene's measure (infinite when a flag appears); results kept when asked.
   const auto worst = [&](const Widths& w, std::vector<DesignResult>* results) {
     double value = 0;
-    for (const PreparedScene* scene : scenes) {
+    for (size_t i = 0; i < scenes.size(); ++i) {
       ++sizing.evaluations;
-      DesignResult r = evaluate(*scene, design, w);
+      DesignResult r = evaluate(*scenes[i], design, w);
       value = std::max(value, target_measure(r, target));
+      if (!allowed.empty() && saturates_more(i, r)) value = std::numeric_limits<double>::infinity();
       if (results) results->push_back(std::move(r));
       else if (value > target.max_error) break;  // one failing scene is enough
     }
@@ -90,9 +103,11 @@ Sizing size_design(const Design& design, const std::vector<const PreparedScene*>
   };
   Widths w = widest(user, design);
   sizing.widths = w;
-  sizing.error = worst(w, nullptr);
+  std::vector<DesignResult> widest_results;
+  sizing.error = worst(w, &widest_results);
   if (sizing.error > target.max_error) return sizing;
   sizing.reachable = true;
+  for (const DesignResult& r : widest_results) allowed.push_back(r.flagged_triangles);
   // Error falls as a width grows, so a binary search suffices; the final run
   // below confirms the combination.
   for (const std::string& name : sized_parameters(design)) {

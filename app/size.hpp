@@ -43,7 +43,9 @@ struct Sizing {
 // Coordinate descent from wide widths: each width the design's accuracy
 // depends on, in turn, at the smallest value that still meets the target on
 // every scene with the others where they stand; then the table depth of the
-// deepest band. `on_width` (optional) is told each width as it is fixed.
+// deepest band. A width is taken only if no scene then raises a saturation
+// flag on more triangles than at the widest widths. `on_width` (optional) is
+// told each width as it is fixed.
 Sizing size_design(const Design& design, const std::vector<const PreparedScene*>& scenes,
                    const Widths& user, const ErrorTarget& target,
                    const std::function<void(const std::string&, int)>& on_width = {});
