@@ -15,6 +15,7 @@
 #include "cli_checks.hpp"
 #include "common.hpp"
 #include "interrupt.hpp"
+#include "progress.hpp"
 #include "regress.hpp"
 #include "report.hpp"
 #include "size.hpp"
@@ -104,6 +105,8 @@ CLI::App* add_choose_command(CLI::App& app, ChooseOptions& options) {
       ->capture_default_str();
   cmd->add_option("--rtl-cache", options.rtl_cache, "folder of verilated units (as cdsim regress)");
   cmd->add_option("--area-cache", options.area_cache, "folder of synthesis results (as cdsim area --cache)");
+  cmd->add_option("--jobs", options.jobs, "designs sized and configurations synthesised at a time (default: all cores)")
+      ->check(CLI::Range(1u, 256u));
   return cmd;
 }
 
@@ -135,12 +138,14 @@ int run_choose_command(const ChooseOptions& options) {
 
   // Size every design; for a table design, shrink the table while banding
   // keeps the cycles within the budget.
-  std::vector<Candidate> candidates;
-  for (size_t k = 0; k < designs.size(); ++k) {
+  // The designs are sized independently, `--jobs` at a time.
+  std::vector<Candidate> candidates(designs.size());
+  std::vector<double> seconds(designs.size());
+  std::vector<int> evaluations(designs.size());
+  run_parallel(designs.size(), options.jobs, "choose", "designs sized", [&](size_t k) {
     const Design& d = designs[k];
-    fmt::print(stderr, "choose: sizing {} ({}/{}) ...", d.name, k + 1, designs.size());
     const auto start = std::chrono::steady_clock::now();
-    Candidate c;
+    Candidate& c = candidates[k];
     c.design = d;
     const Sizing sizing = size_design(d, scene_list, user, target);
     c.meets = sizing.reachable && sizing.error <= target.max_error;
@@ -171,11 +176,12 @@ int run_choose_command(const ChooseOptions& options) {
         c.pixels = pixels;
       }
     }
-    fmt::print(stderr, " {} in {:.1f} s ({} model runs)\n", c.meets ? "sized" : "cannot meet the target",
-               std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
-               sizing.evaluations);
-    candidates.push_back(c);
-  }
+    seconds[k] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    evaluations[k] = sizing.evaluations;
+  }, ProgressShown::Always);
+  for (size_t k = 0; k < designs.size(); ++k)
+    fmt::print(stderr, "choose: {} {} in {:.1f} s ({} model runs)\n", designs[k].name,
+               candidates[k].meets ? "sized" : "cannot meet the target", seconds[k], evaluations[k]);
 
   // Synthesise every design that meets the target and has RTL.
   AreaOptions area_options;
@@ -183,7 +189,7 @@ int run_choose_command(const ChooseOptions& options) {
   std::vector<AreaJob> jobs;
   for (const Candidate& c : candidates)
     if (c.meets && has_rtl(c.design)) jobs.push_back({c.design, c.widths});
-  const std::vector<AreaReport> areas = synthesise_areas(jobs, area_options, 0);
+  const std::vector<AreaReport> areas = synthesise_areas(jobs, area_options, options.jobs);
   for (size_t i = 0, a = 0; i < candidates.size(); ++i) {
     Candidate& c = candidates[i];
     if (!c.meets) continue;

@@ -28,6 +28,7 @@ struct ChooseOptions {
   size_t verify_random = 500;
   double verify_backpressure = 0.3;
   std::string rtl_cache, area_cache;
+  unsigned jobs = 0;           // designs sized, and syntheses, at a time (0: all cores)
 };
 
 CLI::App* add_choose_command(CLI::App& app, ChooseOptions& options);
