@@ -23,6 +23,7 @@
 #include "derived_widths.hpp"
 #include "interrupt.hpp"
 #include "progress.hpp"
+#include "rtl_build.hpp"
 
 namespace cdsim {
 
@@ -153,6 +154,16 @@ using namespace area_detail;
 
 namespace area_detail {
 
+std::vector<fs::path> rtl_sources_of(const std::string& top) {
+  std::vector<fs::path> sources;
+  if (top == rtl::build::kAdaptiveTop)
+    for (const char* source : rtl::build::kAdaptiveSources) sources.emplace_back(source);
+  else
+    for (const char* source : rtl::build::kRtlSources) sources.emplace_back(source);
+  std::sort(sources.begin(), sources.end());
+  return sources;
+}
+
 UnitConfig prepare_unit(const Design& design, const Widths& widths, const AreaOptions& options) {
   if (!has_rtl(design))
     throw std::invalid_argument(fmt::format(
@@ -182,12 +193,11 @@ UnitConfig prepare_unit(const Design& design, const Widths& widths, const AreaOp
       parameters += fmt::format("-set {} {} ", p.name, p.value);
   parameters += "-set HasObservation 0";
 
-  // Every RTL source, in name order, so that the hash is stable.
+  // The top's RTL sources (those the simulations verilate), in name order, so
+  // that the hash is stable and a change to the other unit's files keeps
+  // this one's syntheses.
   const fs::path rtl_dir = kRtlDir;
-  std::vector<fs::path> sources;
-  for (const auto& entry : fs::directory_iterator(rtl_dir))
-    if (entry.path().extension() == ".sv") sources.push_back(entry.path());
-  std::sort(sources.begin(), sources.end());
+  const std::vector<fs::path> sources = rtl_sources_of(c.top);
   c.header = c.top == "adaptive_unit" ? rtl_header(adaptive_leaf_widths(widths), "area, adaptive leaf unit")
                                       : rtl_header(widths, "area");
   uint64_t hash = fnv1a(kFlowVersion);

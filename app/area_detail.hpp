@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "area.hpp"
 
@@ -37,6 +38,9 @@ struct UnitConfig {
   int word_bits = 0;
 };
 
+// The RTL sources of a top ("cd_scan_unit" or "adaptive_unit"), as the
+// simulations verilate them (sim/CMakeLists.txt), in name order.
+std::vector<std::filesystem::path> rtl_sources_of(const std::string& top);
 UnitConfig prepare_unit(const Design& design, const Widths& widths, const AreaOptions& options);
 std::map<std::string, ModuleStat> parse_stat(const std::string& log);
 // "$paramod$0123\shift_round" -> "shift_round".

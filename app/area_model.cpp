@@ -235,12 +235,8 @@ std::string liberty_name(const std::string& liberty) { return fs::path(liberty).
 std::string default_area_model_path() { return (fs::path(kRtlDir) / "area_model.json").string(); }
 
 std::string rtl_sources_hash() {
-  std::vector<fs::path> sources;
-  for (const auto& entry : fs::directory_iterator(kRtlDir))
-    if (entry.path().extension() == ".sv") sources.push_back(entry.path());
-  std::sort(sources.begin(), sources.end());
   uint64_t hash = fnv1a(kCoarseFlow);
-  for (const fs::path& source : sources) hash = fnv1a(read_text_file(source), hash);
+  for (const fs::path& source : rtl_sources_of("cd_scan_unit")) hash = fnv1a(read_text_file(source), hash);
   return fmt::format("{:016x}", hash);
 }
 

@@ -45,6 +45,7 @@ struct AreaModel {
 // it is missing or malformed.
 AreaModel load_area_model(const std::string& path);
 std::string default_area_model_path();
+// A hash of the scan unit's RTL sources (those the model is calibrated on) and the flow.
 std::string rtl_sources_hash();
 // The calibration archive (default: rtl/area_calibration.json): per
 // configuration key, its synthesised areas and elaborated inventory, so that a
