@@ -219,19 +219,15 @@ int run_choose_command(const ChooseOptions& options) {
     Candidate& winner = candidates.front();
     fmt::print("verify: {} on the RTL at its widths, against the model\n", winner.design.name);
     std::fflush(stdout);
-    bool ok = true;
-    for (size_t s = 0; s < scene_names.size() && ok; ++s) {
-      rtl::VerifyRequest request;
-      request.widths = winner.widths;
-      request.scene = scene_names[s];
-      request.scene_options = options.scene_options;
-      request.design = winner.design.name;
-      request.random = s + 1 == scene_names.size() ? options.verify_random : 0;
-      request.backpressure = options.verify_backpressure;
-      request.rtl_cache = options.rtl_cache;
-      ok = rtl::verify_widths(request) == 0;
-    }
-    winner.rtl_verified = ok ? "yes" : "no";
+    rtl::VerifyRequest request;
+    request.widths = winner.widths;
+    request.scenes = scene_names;
+    request.scene_options = options.scene_options;
+    request.design = winner.design.name;
+    request.random = options.verify_random;
+    request.backpressure = options.verify_backpressure;
+    request.rtl_cache = options.rtl_cache;
+    winner.rtl_verified = rtl::verify_widths(request) == 0 ? "yes" : "no";
     fmt::print("\n");
   }
 

@@ -219,7 +219,7 @@ int run_size_command(const SizeOptions& options) {
   std::fflush(stdout);
   rtl::VerifyRequest request;
   request.widths = w;
-  request.scene = options.common.scene;
+  request.scenes = {options.common.scene};
   request.scene_options = options.common.scene_options;
   request.design = design.name;
   request.random = options.verify_random;

@@ -177,19 +177,24 @@ std::vector<Job> source_jobs(const RegressOptions& o, const Widths& widths,
     source = fmt::format("{} random triangles (seed {})", o.random, o.seed);
     std::cout << "source: " << source << '\n';
   } else {
-    const PreparedScene scene = prepare(load_scene(o.scene, o.scene_options), widths);
-    for (size_t i = 0; i < scene.unit.size(); ++i) {
-      Job job;
-      job.triangle = scene.unit[i];
-      job.design = designs[i % designs.size()];
-      job.viewport_width = scene.scene.width;
-      job.viewport_height = scene.scene.height;
-      job.origin = fmt::format("scene {} triangle {}", scene.scene.name, i);
-      jobs.push_back(std::move(job));
+    std::vector<std::string> names = {o.scene};
+    names.insert(names.end(), o.more_scenes.begin(), o.more_scenes.end());
+    for (const std::string& name : names) {
+      const PreparedScene scene = prepare(load_scene(name, o.scene_options), widths);
+      for (size_t i = 0; i < scene.unit.size(); ++i) {
+        Job job;
+        job.triangle = scene.unit[i];
+        job.design = designs[jobs.size() % designs.size()];
+        job.viewport_width = scene.scene.width;
+        job.viewport_height = scene.scene.height;
+        job.origin = fmt::format("scene {} triangle {}", scene.scene.name, i);
+        jobs.push_back(std::move(job));
+      }
+      const std::string one = fmt::format("scene {} ({} triangles, {}x{})", scene.scene.name, scene.unit.size(),
+                                          scene.scene.width, scene.scene.height);
+      std::cout << (source.empty() ? "source: " : "source: then ") << one << '\n';
+      source += (source.empty() ? "" : ", then ") + one;
     }
-    source = fmt::format("scene {} ({} triangles, {}x{})", scene.scene.name, jobs.size(), scene.scene.width,
-                         scene.scene.height);
-    std::cout << "source: " << source << '\n';
   }
   if (o.random > 0 && o.scene_and_random) {
     for (Job& job : random_jobs(o.random, o.seed, widths, designs))
@@ -356,7 +361,9 @@ int run_regress_command(const RegressOptions& given) {
 
 int verify_widths(const VerifyRequest& request) {
   options = RegressOptions{};
-  options.scene = request.scene;
+  if (request.scenes.empty()) throw std::invalid_argument("verify: no scene");
+  options.scene = request.scenes.front();
+  options.more_scenes.assign(request.scenes.begin() + 1, request.scenes.end());
   options.scene_options = request.scene_options;
   options.scene_and_random = true;
   options.random = request.random;

@@ -30,6 +30,7 @@ struct RegressOptions {
   std::vector<std::string> settings;  // NAME=VALUE on top of `widths`
   std::string rtl_cache;              // folder of the RTL verilated for --set widths
   bool scene_and_random = false;      // the scene, then `random` triangles (size --verify)
+  std::vector<std::string> more_scenes;  // after `scene`, in the same stream (choose's check)
   std::string shard;                  // "I/N": every N-th triangle from the I-th (cdsim merge joins them)
   std::string json_path;              // the summary as JSON
   std::string coverage_dir;           // coverage data and report (regress --coverage)
@@ -47,7 +48,8 @@ Widths widths_of(const std::string& config);
 // design with RTL); throws std::invalid_argument for a name without RTL.
 std::vector<const Design*> designs_for(const std::string& name);
 // The triangles of a run, numbered in the whole source: the scene, or
-// `random` seeded random triangles, or both (scene_and_random), the designs
+// `random` seeded random triangles, or both (scene_and_random; the scene then
+// more_scenes, then the random ones), the designs
 // taken in turn. Prints a "source:" line and describes the source in `source`.
 std::vector<Job> source_jobs(const RegressOptions& options, const Widths& widths,
                              const std::vector<const Design*>& designs, std::string& source);
@@ -85,7 +87,9 @@ int64_t hang_cycle_limit(int64_t model_cycles, int64_t pixels, double backpressu
 // prints; returns its exit code (0: no mismatch).
 struct VerifyRequest {
   Widths widths;
-  std::string scene = "default";
+  // In one stream, each triangle with its scene's viewport (SystemC
+  // elaborates a bench once per process, so one run must hold them all).
+  std::vector<std::string> scenes = {"default"};
   SceneOptions scene_options;
   std::string design;  // a constant-depth design (the RTL has no other)
   size_t random = 2000;

@@ -28,6 +28,12 @@ done
 "$(dirname "$0")/../scripts/plot" "$work/sweep" > "$work/plot.txt"
 "$cdsim" choose "$scene" --design affine,divide "${args[@]}" --metric footprint --max-error 100 \
   --verify-random 50 --json "$work/choose.json" > "$work/choose.txt"
+# Two scenes of different viewports: the winner's RTL check runs both in one
+# stream (a second SystemC bench in one process cannot be elaborated).
+winner=$(/usr/bin/python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["ranking"][0]["design"])' \
+  "$work/choose.json")
+"$cdsim" choose "$scene" "$(dirname "$0")/data/good.tri" --design "$winner" "${args[@]}" --metric footprint \
+  --max-error 100 --verify-random 20 --json "$work/choose2.json" > "$work/choose2.txt"
 
 /usr/bin/python3 - "$work" "$cdsim" "$scene" <<'PY'
 import csv, json, subprocess, sys
@@ -94,6 +100,12 @@ for r in met:
     expect(close(area["total_area_um2"], r["total_area_um2"]), f"choose: {r['design']}'s area is what cdsim area synthesises")
 expect(ranking[0]["rtl_verified"] is True, "choose: the winner passed its RTL check")
 expect("winner: " + ranking[0]["design"] in open(f"{work}/choose.txt").read(), "choose prints the winner")
+two = json.load(open(f"{work}/choose2.json"))
+expect(len(two["scenes"]) == 2 and two["ranking"][0]["rtl_verified"] is True,
+       "choose on two scenes: the winner passed its RTL check")
+text = open(f"{work}/choose2.txt").read()
+expect("source: scene" in text and "source: then scene" in text and "0 mismatches" in text,
+       "choose on two scenes: one RTL run holds both scenes")
 sys.exit(1 if failures else 0)
 PY
 echo PASS
