@@ -424,7 +424,7 @@ CLI::App* add_area_model_command(CLI::App& app, AreaModelOptions& options) {
 int run_area_model_command(const AreaModelOptions& options) {
   const std::vector<Design> designs = [&] {
     std::vector<Design> out;
-    for (const Design& d : options.designs == "all" ? all_designs() : designs_from(options.designs))
+    for (const Design& d : designs_from(options.designs))
       // Calibrated on the scan unit's designs; the adaptive unit is synthesised.
       if (has_rtl(d) && rtl_top(d) == RtlTop::ScanUnit) out.push_back(d);
     return out;

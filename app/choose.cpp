@@ -75,7 +75,7 @@ CLI::App* add_choose_command(CLI::App& app, ChooseOptions& options) {
   cmd->add_option("--spawn", options.scene_options.spawn, "as for run, applied to every scene")
       ->check(CLI::Range(0, 1000000));
   cmd->add_option("--resolution", options.scene_options.resolution, "WxH viewport, every scene");
-  cmd->add_option("--design", options.designs, "comma-separated designs (default: all)");
+  cmd->add_option("--design", options.designs, "comma-separated designs, or all (the default)");
   cmd->add_option("--set", options.settings,
                   "NAME=VALUE: a width sizing keeps (the output format, subpixel and input bits, "
                   "latencies); repeatable");

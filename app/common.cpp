@@ -14,7 +14,7 @@ namespace cdsim {
 void add_common(CLI::App* app, CommonOptions& options) {
   add_scene_options(app, options.scene, options.scene_options);
   app->add_option("--design", options.designs,
-                  "comma-separated designs (default: all; see 'cdsim designs')");
+                  "comma-separated designs, or all (the default; see 'cdsim designs')");
   app->add_option("--set", options.settings,
                   "NAME=VALUE: change a width or microarchitecture parameter (see 'cdsim widths'); "
                   "repeatable, each parameter once");
@@ -39,6 +39,7 @@ void check_output_folder(const std::string& option, const std::string& path) {
 }
 
 std::vector<Design> designs_from(const std::string& list) {
+  if (list == "all") return all_designs();
   const std::vector<Design> designs = parse_design_list(list);
   for (size_t i = 0; i < designs.size(); ++i)
     for (size_t j = 0; j < i; ++j)

@@ -25,7 +25,7 @@ Widths widths_from(const CommonOptions& options);
 // Refuses, before a long run, an output file whose folder is missing or not
 // writable (the write itself is checked again).
 void check_output_folder(const std::string& option, const std::string& path);
-// parse_design_list, refusing a design named twice.
+// parse_design_list, refusing a design named twice; "all" is every design.
 std::vector<Design> designs_from(const std::string& list);
 PreparedScene prepared_scene(const CommonOptions& options, const Widths& widths);
 

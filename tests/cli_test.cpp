@@ -143,6 +143,16 @@ TEST(CommandLine, SetIsRepeatableButEachParameterOnce) {
                "design 'cd-linear' is listed twice");
 }
 
+TEST(CommandLine, DesignAllIsEveryDesign) {
+  std::vector<std::string> names;
+  for (const cdsim::Design& d : cdsim::designs_from("all")) names.push_back(d.name);
+  std::vector<std::string> every;
+  for (const cdsim::Design& d : cdsim::all_designs()) every.push_back(d.name);
+  EXPECT_EQ(names, every);
+  EXPECT_GE(names.size(), 16u);
+  EXPECT_PRED2(contains, what_of([] { cdsim::designs_from("all,divide"); }), "all");
+}
+
 TEST(CommandLine, RefusesOptionsThatWouldBeIgnored) {
   EXPECT_PRED2(contains, parse_error({"regress", "--random", "5", "--scene", "hard:all"}), "excludes --random");
   EXPECT_PRED2(contains, parse_error({"size", "--max-error", "1", "--verify-random", "5"}),
