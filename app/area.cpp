@@ -23,7 +23,7 @@
 #include "derived_widths.hpp"
 #include "interrupt.hpp"
 #include "progress.hpp"
-#include "rtl_build.hpp"
+#include "rtl_sources.hpp"
 
 namespace cdsim {
 
@@ -156,10 +156,9 @@ namespace area_detail {
 
 std::vector<fs::path> rtl_sources_of(const std::string& top) {
   std::vector<fs::path> sources;
-  if (top == rtl::build::kAdaptiveTop)
-    for (const char* source : rtl::build::kAdaptiveSources) sources.emplace_back(source);
-  else
-    for (const char* source : rtl::build::kRtlSources) sources.emplace_back(source);
+  for (const char* file : kScanUnitRtlFiles) sources.push_back(fs::path(kRtlDir) / file);
+  if (top == "adaptive_unit")
+    for (const char* file : kAdaptiveRtlFiles) sources.push_back(fs::path(kRtlDir) / file);
   std::sort(sources.begin(), sources.end());
   return sources;
 }
