@@ -39,7 +39,7 @@ struct UnitConfig {
 };
 
 // The RTL sources of a top ("cd_scan_unit" or "adaptive_unit"), as the
-// simulations verilate them (sim/CMakeLists.txt), in name order.
+// simulations verilate them (named in cmake/rtl_sources.cmake), in name order.
 std::vector<std::filesystem::path> rtl_sources_of(const std::string& top);
 UnitConfig prepare_unit(const Design& design, const Widths& widths, const AreaOptions& options);
 std::map<std::string, ModuleStat> parse_stat(const std::string& log);
