@@ -137,8 +137,8 @@ int run_choose_command(const ChooseOptions& options) {
   std::fflush(stdout);
 
   // Size every design; for a table design, shrink the table while banding
-  // keeps the cycles within the budget.
-  // The designs are sized independently, `--jobs` at a time.
+  // keeps the cycles within the budget (shrink_table). The designs are sized
+  // independently, `--jobs` at a time.
   std::vector<Candidate> candidates(designs.size());
   std::vector<double> seconds(designs.size());
   std::vector<int> evaluations(designs.size());
@@ -147,35 +147,14 @@ int run_choose_command(const ChooseOptions& options) {
     const auto start = std::chrono::steady_clock::now();
     Candidate& c = candidates[k];
     c.design = d;
-    const Sizing sizing = size_design(d, scene_list, user, target);
+    Sizing sizing = size_design(d, scene_list, user, target);
+    c.unbanded_cycles = total(sizing.results, &DesignResult::cycles);
+    shrink_table(d, scene_list, target, options.max_slowdown, sizing);
     c.meets = sizing.reachable && sizing.error <= target.max_error;
     c.widths = sizing.widths;
     c.error = sizing.error;
     c.cycles = total(sizing.results, &DesignResult::cycles);
     c.pixels = total(sizing.results, &DesignResult::pixels);
-    c.unbanded_cycles = c.cycles;
-    if (c.meets && d.kind == Design::Kind::ConstantDepth) {
-      const int minimum = 4;  // widths.def's table_depth minimum
-      for (int depth = c.widths.table_depth / 2; depth >= minimum; depth /= 2) {
-        Widths trial = c.widths;
-        trial.table_depth = depth;
-        double error = 0;
-        int64_t cycles = 0, pixels = 0;
-        for (const PreparedScene* s : scene_list) {
-          const DesignResult r = evaluate(*s, d, trial);
-          error = std::max(error, target_measure(r, target));
-          cycles += r.cycles;
-          pixels += r.pixels;
-        }
-        if (error > target.max_error ||
-            double(cycles) > options.max_slowdown * double(c.unbanded_cycles))
-          break;  // a smaller table only bands more
-        c.widths = trial;
-        c.error = error;
-        c.cycles = cycles;
-        c.pixels = pixels;
-      }
-    }
     seconds[k] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     evaluations[k] = sizing.evaluations;
   }, ProgressShown::Always);

@@ -64,6 +64,14 @@ Widths widest(Widths w, const Design& design) {
   return w;
 }
 
+// Whether a result has a flag (but banding, which the table depth decides) on
+// more triangles than `allowed`.
+bool saturates_more(const std::array<int64_t, flag::kCount>& allowed, const DesignResult& r) {
+  for (int f = 0; f < flag::kCount; ++f)
+    if ((1u << f) != flag::kBanded && r.flagged_triangles[f] > allowed[f]) return true;
+  return false;
+}
+
 }  // namespace
 
 double target_measure(const DesignResult& r, const ErrorTarget& target) {
@@ -82,12 +90,7 @@ Sizing size_design(const Design& design, const std::vector<const PreparedScene*>
   // decides) on more triangles than at the widest. Otherwise a loose target,
   // above all a footprint one, would take widths that clamp the output of
   // triangles whose footprint is large (docs/choose.md).
-  std::vector<std::array<int64_t, flag::kCount>> allowed;
-  const auto saturates_more = [&](size_t scene, const DesignResult& r) {
-    for (int f = 0; f < flag::kCount; ++f)
-      if ((1u << f) != flag::kBanded && r.flagged_triangles[f] > allowed[scene][f]) return true;
-    return false;
-  };
+  std::vector<std::array<int64_t, flag::kCount>>& allowed = sizing.widest_flags;
   // The worst scene's measure (infinite when a flag appears); results kept when asked.
   const auto worst = [&](const Widths& w, std::vector<DesignResult>* results) {
     double value = 0;
@@ -95,7 +98,7 @@ Sizing size_design(const Design& design, const std::vector<const PreparedScene*>
       ++sizing.evaluations;
       DesignResult r = evaluate(*scenes[i], design, w);
       value = std::max(value, target_measure(r, target));
-      if (!allowed.empty() && saturates_more(i, r)) value = std::numeric_limits<double>::infinity();
+      if (!allowed.empty() && saturates_more(allowed[i], r)) value = std::numeric_limits<double>::infinity();
       if (results) results->push_back(std::move(r));
       else if (value > target.max_error) break;  // one failing scene is enough
     }
@@ -143,6 +146,35 @@ Sizing size_design(const Design& design, const std::vector<const PreparedScene*>
   sizing.widths = w;
   sizing.error = worst(w, &sizing.results);
   return sizing;
+}
+
+void shrink_table(const Design& design, const std::vector<const PreparedScene*>& scenes,
+                  const ErrorTarget& target, double max_slowdown, Sizing& sizing) {
+  if (!sizing.reachable || design.kind != Design::Kind::ConstantDepth) return;
+  int64_t sized_cycles = 0;
+  for (const DesignResult& r : sizing.results) sized_cycles += r.cycles;
+  const int minimum = info("table_depth").min_value;
+  for (int depth = sizing.widths.table_depth / 2; depth >= minimum; depth /= 2) {
+    throw_if_interrupted();
+    Widths trial = sizing.widths;
+    trial.table_depth = depth;
+    std::vector<DesignResult> results;
+    double error = 0;
+    int64_t cycles = 0;
+    bool flagged = false;
+    for (size_t i = 0; i < scenes.size(); ++i) {
+      ++sizing.evaluations;
+      results.push_back(evaluate(*scenes[i], design, trial));
+      error = std::max(error, target_measure(results.back(), target));
+      cycles += results.back().cycles;
+      flagged = flagged || saturates_more(sizing.widest_flags[i], results.back());
+    }
+    if (error > target.max_error || flagged || double(cycles) > max_slowdown * double(sized_cycles))
+      break;  // a smaller table only bands more
+    sizing.widths = trial;
+    sizing.results = std::move(results);
+    sizing.error = error;
+  }
 }
 
 CLI::App* add_size_command(CLI::App& app, SizeOptions& options) {

@@ -5,6 +5,8 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <array>
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -38,6 +40,9 @@ struct Sizing {
   std::vector<DesignResult> results;  // per scene, at `widths`
   double error = 0;           // the worst scene's measure at `widths` (at the widest if unreachable)
   int evaluations = 0;        // model runs
+  // Per scene, the triangles each flag marks at the widest widths: what a
+  // narrower width or a smaller table may not exceed (banding aside).
+  std::vector<std::array<int64_t, flag::kCount>> widest_flags;
 };
 
 // Coordinate descent from wide widths: each width the design's accuracy
@@ -49,6 +54,14 @@ struct Sizing {
 Sizing size_design(const Design& design, const std::vector<const PreparedScene*>& scenes,
                    const Widths& user, const ErrorTarget& target,
                    const std::function<void(const std::string&, int)>& on_width = {});
+
+// Halves a reachable table design's table depth while every scene still meets
+// the target and raises no saturation flag on more triangles than at the
+// widest widths, and the scenes' cycles stay within max_slowdown times those
+// at the sized depth (a smaller table bands and refills more). Updates the
+// sizing's widths, results, error and evaluations.
+void shrink_table(const Design& design, const std::vector<const PreparedScene*>& scenes,
+                  const ErrorTarget& target, double max_slowdown, Sizing& sizing);
 
 CLI::App* add_size_command(CLI::App& app, SizeOptions& options);
 int run_size_command(const SizeOptions& options);

@@ -46,5 +46,46 @@ TEST(Size, NarrowingNeverAddsSaturatedTriangles) {
   }
 }
 
+// choose's table halving: the depth it keeps meets the target, raises no new
+// saturation flag and keeps the cycles within the budget, each measured here
+// by a run of its own; and one more halving would break one of the three.
+TEST(Size, ShrinkTableStopsAtTheLastDepthWithinBudget) {
+  const Widths defaults;
+  const PreparedScene scene = prepare(default_scene(), defaults);
+  const Design& design = find_design("cd-linear");
+  const ErrorTarget target{0.5, "footprint", "max"};
+  const double max_slowdown = 1.1;
+  const Sizing sized = size_design(design, {&scene}, defaults, target);
+  ASSERT_TRUE(sized.reachable);
+  Sizing shrunk = sized;
+  shrink_table(design, {&scene}, target, max_slowdown, shrunk);
+
+  const int depth = shrunk.widths.table_depth;
+  bool halved = false;  // depth = the sized depth halved (rounding down) k >= 0 times
+  for (int d = sized.widths.table_depth; d >= 4 && !halved; d /= 2) halved = d == depth;
+  EXPECT_TRUE(halved) << depth << " lines from " << sized.widths.table_depth;
+  Widths others = shrunk.widths;
+  others.table_depth = sized.widths.table_depth;
+  EXPECT_EQ(describe(others), describe(sized.widths)) << "only the table depth changes";
+
+  const DesignResult at_sized = evaluate(scene, design, sized.widths);
+  const auto within = [&](const DesignResult& r) {
+    bool flags_ok = true;
+    for (int f = 0; f < flag::kCount; ++f)
+      if ((1u << f) != flag::kBanded && r.flagged_triangles[f] > sized.widest_flags.at(0)[f]) flags_ok = false;
+    return r.error.footprint_max <= target.max_error && flags_ok &&
+           double(r.cycles) <= max_slowdown * double(at_sized.cycles);
+  };
+  const DesignResult at_shrunk = evaluate(scene, design, shrunk.widths);
+  EXPECT_TRUE(within(at_shrunk));
+  EXPECT_EQ(at_shrunk.cycles, shrunk.results.at(0).cycles);
+  EXPECT_EQ(at_shrunk.error.footprint_max, shrunk.error);
+  if (depth / 2 >= 4) {
+    Widths half = shrunk.widths;
+    half.table_depth = depth / 2;
+    EXPECT_FALSE(within(evaluate(scene, design, half))) << "a table of " << depth / 2 << " lines was within budget too";
+  }
+}
+
 }  // namespace
 }  // namespace cdsim
