@@ -335,6 +335,70 @@ Widths random_widths(uint64_t seed, const std::string& tag, int index) {
   throw std::logic_error("random_widths: no valid widths in 10000 draws");
 }
 
+namespace {
+
+// min |A x - y| subject to x >= 0, by Lawson and Hanson's active-set method
+// (Solving Least Squares Problems, 1974, ch. 23): features join the passive
+// set while the residual's gradient favours one of them, and leave it when
+// the unconstrained fit on the passive set would make them negative. Columns
+// are scaled to unit length first (the features span 1 to 10^5), and the fit
+// on a passive set is the smallest-norm one (collinear features).
+Eigen::VectorXd nonnegative_least_squares(const Eigen::MatrixXd& a_raw, const Eigen::VectorXd& y) {
+  const Eigen::Index n = a_raw.cols();
+  Eigen::VectorXd scale = a_raw.colwise().norm().transpose();
+  Eigen::MatrixXd a = a_raw;
+  for (Eigen::Index j = 0; j < n; ++j)
+    if (scale(j) > 0) a.col(j) /= scale(j);
+  const double tolerance = 1e-12 * std::max(1.0, y.norm()) * static_cast<double>(std::max<Eigen::Index>(n, 1));
+  std::vector<bool> passive(static_cast<size_t>(n), false);
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
+  // The fit on the passive set, zero elsewhere.
+  const auto passive_fit = [&] {
+    std::vector<Eigen::Index> cols;
+    for (Eigen::Index j = 0; j < n; ++j)
+      if (passive[static_cast<size_t>(j)]) cols.push_back(j);
+    Eigen::MatrixXd sub(a.rows(), static_cast<Eigen::Index>(cols.size()));
+    for (size_t k = 0; k < cols.size(); ++k) sub.col(static_cast<Eigen::Index>(k)) = a.col(cols[k]);
+    const Eigen::VectorXd z = sub.completeOrthogonalDecomposition().solve(y);
+    Eigen::VectorXd s = Eigen::VectorXd::Zero(n);
+    for (size_t k = 0; k < cols.size(); ++k) s(cols[k]) = z(static_cast<Eigen::Index>(k));
+    return s;
+  };
+  for (Eigen::Index iteration = 0; iteration < 30 * std::max<Eigen::Index>(n, 1); ++iteration) {
+    const Eigen::VectorXd gradient = a.transpose() * (y - a * x);
+    Eigen::Index best = -1;
+    for (Eigen::Index j = 0; j < n; ++j)
+      if (!passive[static_cast<size_t>(j)] && scale(j) > 0 && gradient(j) > tolerance &&
+          (best < 0 || gradient(j) > gradient(best)))
+        best = j;
+    if (best < 0) break;  // optimal: no free feature would lower the residual
+    passive[static_cast<size_t>(best)] = true;
+    Eigen::VectorXd s = passive_fit();
+    for (Eigen::Index inner = 0; inner <= n; ++inner) {
+      double alpha = 1;  // the step towards s that keeps x >= 0
+      bool infeasible = false;
+      for (Eigen::Index j = 0; j < n; ++j)
+        if (passive[static_cast<size_t>(j)] && s(j) <= 0) {
+          infeasible = true;
+          alpha = std::min(alpha, x(j) / (x(j) - s(j)));
+        }
+      if (!infeasible) break;
+      x += alpha * (s - x);
+      for (Eigen::Index j = 0; j < n; ++j)
+        if (passive[static_cast<size_t>(j)] && x(j) <= 0) {
+          passive[static_cast<size_t>(j)] = false;
+          x(j) = 0;
+        }
+      s = passive_fit();
+    }
+    x = s;
+  }
+  for (Eigen::Index j = 0; j < n; ++j) x(j) = scale(j) > 0 ? std::max(0.0, x(j)) / scale(j) : 0;
+  return x;
+}
+
+}  // namespace
+
 std::map<std::string, AreaFeatures> fit_area_coefficients(const std::vector<AreaSample>& samples,
                                                           size_t leave_out) {
   std::map<std::string, std::vector<const AreaSample*>> by_kind;
@@ -345,8 +409,6 @@ std::map<std::string, AreaFeatures> fit_area_coefficients(const std::vector<Area
     }
   std::map<std::string, AreaFeatures> out;
   for (const auto& [kind, list] : by_kind) {
-    // A kind with too few samples for its own fit takes the fit of every kind.
-    if (kind != kAnyKind && list.size() < kSamplesPerKindFit) continue;
     Eigen::MatrixXd x(static_cast<Eigen::Index>(list.size()), static_cast<Eigen::Index>(kFeatureCount));
     Eigen::VectorXd y(static_cast<Eigen::Index>(list.size()));
     for (size_t r = 0; r < list.size(); ++r) {
@@ -354,9 +416,10 @@ std::map<std::string, AreaFeatures> fit_area_coefficients(const std::vector<Area
         x(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = list[r]->features[c];
       y(static_cast<Eigen::Index>(r)) = list[r]->area;
     }
-    // Least squares, the smallest coefficients among equal fits (features a
-    // kind never has get 0).
-    const Eigen::VectorXd beta = x.completeOrthogonalDecomposition().solve(y);
+    // A kind with too few samples for its own fit takes the fit of every kind.
+    const auto used = static_cast<size_t>((x.array() != 0).colwise().any().count());
+    if (kind != kAnyKind && list.size() < kSamplesPerFeature * std::max<size_t>(used, 1)) continue;
+    const Eigen::VectorXd beta = nonnegative_least_squares(x, y);
     AreaFeatures c{};
     for (size_t i = 0; i < kFeatureCount; ++i) c[i] = beta(static_cast<Eigen::Index>(i));
     out[kind] = c;

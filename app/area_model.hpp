@@ -28,10 +28,12 @@ inline constexpr std::array<const char*, 12> kAreaFeatures = {
     "mul_pp_bits", "add_bits",   "compare_bits", "equal_bits", "mux_bits",   "pmux_bits",
     "flop_bits",   "async_flop_bits", "shift_bits", "logic_bits", "reduce_bits", "other_bits"};
 using AreaFeatures = std::array<double, kAreaFeatures.size()>;
-// The coefficients of a kind with fewer samples than kSamplesPerKindFit are
-// those fitted to every kind's samples together, stored under kAnyKind.
+// A kind is fitted on its own when it has kSamplesPerFeature samples for
+// each feature its samples have (not zero in all of them); otherwise its
+// coefficients are those fitted to every kind's samples together, stored
+// under kAnyKind.
 inline constexpr const char* kAnyKind = "*";
-inline constexpr size_t kSamplesPerKindFit = 2 * kAreaFeatures.size();
+inline constexpr size_t kSamplesPerFeature = 2;
 
 // Per module kind, area = coefficients . features.
 struct AreaModel {
@@ -73,8 +75,9 @@ struct AreaSample {
   double area = 0;
   size_t config = 0;
 };
-// Least squares per kind over the samples not of configuration `leave_out`
-// (the smallest coefficients among equal fits), and over all of them as kAnyKind.
+// Non-negative least squares per kind over the samples not of configuration
+// `leave_out` (no feature takes area away; among equal fits on the features
+// kept, the smallest coefficients), and over all of them as kAnyKind.
 std::map<std::string, AreaFeatures> fit_area_coefficients(const std::vector<AreaSample>& samples,
                                                           size_t leave_out);
 

@@ -1,9 +1,12 @@
 // The component area model's pieces that need no Yosys (app/area_model.cpp):
-// the features of word-level cells, counted by hand here; the per-kind least
-// squares, which must recover coefficients that generated the samples and
-// must not see the configuration it leaves out; and the random calibration
+// the features of word-level cells, counted by hand here; the per-kind
+// non-negative least squares, which must recover coefficients that generated
+// the samples, must not see the configuration it leaves out and must satisfy
+// the optimality conditions where the plain fit goes negative; and the random calibration
 // widths, which must be valid, in range and reproducible.
 #include <gtest/gtest.h>
+
+#include <Eigen/Dense>
 
 #include <algorithm>
 #include <cmath>
@@ -90,8 +93,9 @@ TEST(AreaModel, FitRecoversTheCoefficientsPerKindAndLeavesTheConfigurationOut) {
     }
   // A wild sample in configuration 3: the fit without it must not feel it.
   samples.push_back({"a", samples[0].features, 1e9, 3});
-  // Kind "c" has too few samples for a fit of its own: it takes the fit of all kinds.
-  for (size_t config = 0; config < cdsim::kSamplesPerKindFit - 1; ++config)
+  // Kind "c" has too few samples for a fit of its own (one short of two per
+  // feature, all twelve in use): it takes the fit of all kinds.
+  for (size_t config = 0; config < cdsim::kSamplesPerFeature * cdsim::kAreaFeatures.size() - 1; ++config)
     samples.push_back({"c", samples[2 * config].features, samples[2 * config].area, config});
   const auto without = cdsim::fit_area_coefficients(samples, 3);
   ASSERT_EQ(without.size(), 3u);
@@ -104,6 +108,69 @@ TEST(AreaModel, FitRecoversTheCoefficientsPerKindAndLeavesTheConfigurationOut) {
   double moved = 0;
   for (size_t i = 0; i < truth_a.size(); ++i) moved += std::abs(with.at("a")[i] - truth_a[i]);
   EXPECT_GT(moved, 1000) << "the wild sample is in the fit that keeps configuration 3";
+}
+
+// Where the plain least-squares fit would give a feature negative area, the
+// fit is the non-negative one: checked by its optimality conditions (Karush,
+// Kuhn, Tucker) on the samples, not by another solver. A kind that uses only
+// some features needs two samples per feature it uses, not per feature.
+TEST(AreaModel, FitIsTheNonNegativeLeastSquaresOne) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> width(1, 60), noise(-400, 400);
+  AreaFeatures truth{};
+  for (size_t i = 0; i < truth.size(); i += 2) truth[i] = 20.0 + static_cast<double>(i);  // odd ones 0
+  std::vector<AreaSample> samples;
+  for (size_t config = 0; config < 30; ++config) {
+    AreaSample s;
+    s.kind = "d";
+    s.config = config;
+    for (double& f : s.features) f = std::round(width(rng));
+    for (size_t i = 0; i < s.features.size(); ++i) s.area += truth[i] * s.features[i];
+    s.area += noise(rng);
+    samples.push_back(s);
+  }
+  // Kind "e" uses three features: six samples fit it on its own.
+  for (size_t config = 0; config < 6; ++config) {
+    AreaSample s;
+    s.kind = "e";
+    s.config = config;
+    s.features[0] = static_cast<double>(config + 1);
+    s.features[3] = static_cast<double>((config * 7) % 5 + 1);
+    s.features[5] = static_cast<double>((config * 3) % 4 + 2);
+    s.area = 5 * s.features[0] + 7 * s.features[3] + 11 * s.features[5];
+    samples.push_back(s);
+  }
+  const auto fit = cdsim::fit_area_coefficients(samples, 1000);
+
+  Eigen::MatrixXd x(30, static_cast<Eigen::Index>(truth.size()));
+  Eigen::VectorXd y(30);
+  for (Eigen::Index r = 0; r < 30; ++r) {
+    for (Eigen::Index c = 0; c < x.cols(); ++c) x(r, c) = samples[static_cast<size_t>(r)].features[static_cast<size_t>(c)];
+    y(r) = samples[static_cast<size_t>(r)].area;
+  }
+  const Eigen::VectorXd plain = x.householderQr().solve(y);
+  ASSERT_LT(plain.minCoeff(), 0) << "the samples must make the plain fit negative somewhere";
+  ASSERT_TRUE(fit.count("d"));
+  Eigen::VectorXd beta(x.cols());
+  for (Eigen::Index c = 0; c < x.cols(); ++c) beta(c) = fit.at("d")[static_cast<size_t>(c)];
+  // KKT: beta >= 0; the gradient of the squared residual is zero where
+  // beta > 0 and does not point into the feasible set where beta = 0.
+  const Eigen::VectorXd gradient = x.transpose() * (x * beta - y);
+  const double scale = (x.transpose() * y).cwiseAbs().maxCoeff();
+  int zeros = 0;
+  for (Eigen::Index c = 0; c < x.cols(); ++c) {
+    EXPECT_GE(beta(c), 0) << cdsim::kAreaFeatures[static_cast<size_t>(c)];
+    if (beta(c) > 0) EXPECT_NEAR(gradient(c) / scale, 0, 1e-9) << cdsim::kAreaFeatures[static_cast<size_t>(c)];
+    else {
+      ++zeros;
+      EXPECT_GE(gradient(c) / scale, -1e-9) << cdsim::kAreaFeatures[static_cast<size_t>(c)];
+    }
+  }
+  EXPECT_GT(zeros, 0) << "some feature is held at zero";
+  ASSERT_TRUE(fit.count("e")) << "three features used, six samples: a fit of its own";
+  EXPECT_NEAR(fit.at("e")[0], 5, 1e-6);
+  EXPECT_NEAR(fit.at("e")[3], 7, 1e-6);
+  EXPECT_NEAR(fit.at("e")[5], 11, 1e-6);
 }
 
 TEST(AreaModel, RandomWidthsAreValidInRangeAndReproducible) {
