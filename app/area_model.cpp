@@ -380,7 +380,8 @@ Eigen::VectorXd nonnegative_least_squares(const Eigen::MatrixXd& a_raw, const Ei
       for (Eigen::Index j = 0; j < n; ++j)
         if (passive[static_cast<size_t>(j)] && s(j) <= 0) {
           infeasible = true;
-          alpha = std::min(alpha, x(j) / (x(j) - s(j)));
+          const double gap = x(j) - s(j);  // 0 only if x(j) = s(j) = 0: no step
+          alpha = std::min(alpha, gap > 0 ? x(j) / gap : 0.0);
         }
       if (!infeasible) break;
       x += alpha * (s - x);
