@@ -50,9 +50,10 @@ TEST(Size, NarrowingNeverAddsSaturatedTriangles) {
 // saturation flag and keeps the cycles within the budget, each measured here
 // by a run of its own; and one more halving would break one of the three.
 TEST(Size, ShrinkTableStopsAtTheLastDepthWithinBudget) {
+  // A small scene (sized in a second), where cd-dense2's table halves once.
   const Widths defaults;
-  const PreparedScene scene = prepare(default_scene(), defaults);
-  const Design& design = find_design("cd-linear");
+  const PreparedScene scene = prepare(load_scene(CDSIM_TEST_DATA "/small_scene.tri"), defaults);
+  const Design& design = find_design("cd-dense2");
   const ErrorTarget target{0.5, "footprint", "max"};
   const double max_slowdown = 1.1;
   const Sizing sized = size_design(design, {&scene}, defaults, target);
@@ -64,6 +65,7 @@ TEST(Size, ShrinkTableStopsAtTheLastDepthWithinBudget) {
   bool halved = false;  // depth = the sized depth halved (rounding down) k >= 0 times
   for (int d = sized.widths.table_depth; d >= 4 && !halved; d /= 2) halved = d == depth;
   EXPECT_TRUE(halved) << depth << " lines from " << sized.widths.table_depth;
+  EXPECT_LT(depth, sized.widths.table_depth) << "the scene no longer makes the table halve: pick another";
   Widths others = shrunk.widths;
   others.table_depth = sized.widths.table_depth;
   EXPECT_EQ(describe(others), describe(sized.widths)) << "only the table depth changes";
