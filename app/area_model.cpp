@@ -543,27 +543,49 @@ int run_area_model_command(const AreaModelOptions& options) {
                                          pending.size(), configs.size(), archive_path, missing));
   }
 
-  // Full syntheses (cached), then the elaborations the model reads.
-  std::vector<AreaJob> jobs;
-  for (size_t i : pending) jobs.push_back({configs[i].design, configs[i].widths});
-  const std::vector<AreaReport> synthesised = synthesise_areas(jobs, area, options.jobs);
+  // Each pending configuration is synthesised (cached), then elaborated for
+  // the model, and recorded in the archive as soon as it is done: a
+  // calibration of hours that is stopped keeps what it finished.
+  const std::string rtl = rtl_sources_hash();
+  nlohmann::json updated = nlohmann::json::object();
+  for (const auto& [key, a] : archive.items())
+    if (a.value("rtl_hash", "") == rtl) updated[key] = a;
   const auto own_areas = [](const std::map<std::string, ModuleStat>& stat) {
     std::map<std::string, double> out;
     for (const auto& [name, m] : stat) out[name] = m.own_area;
     return out;
   };
-  run_parallel(pending.size(), options.jobs, "area-model", "elaborations (Yosys, cached)", [&](size_t k) {
-    const size_t i = pending[k];
-    const UnitConfig u = prepare_unit(configs[i].design, configs[i].widths, area);
-    configs[i].coarse = coarse_pass(u);
-    configs[i].logic = synthesised[k].logic_area_um2;
-    unit_own[i] = own_areas(parse_stat(read_text_file(u.dir / "unit.log")));
-    if (u.has_table) {
-      const auto table = parse_stat(read_text_file(u.dir / "table.log"));
-      configs[i].table = table_area(table);
-      table_own[i] = own_areas(table);
-    }
-  });
+  std::mutex archive_mutex;
+  run_parallel(pending.size(), options.jobs, "area-model", "configurations (Yosys synthesis + elaboration, cached)",
+               [&](size_t k) {
+                 const size_t i = pending[k];
+                 CalibrationConfig& c = configs[i];
+                 c.logic = synthesise_area(c.design, c.widths, area).logic_area_um2;
+                 const UnitConfig u = prepare_unit(c.design, c.widths, area);
+                 c.coarse = coarse_pass(u);
+                 unit_own[i] = own_areas(parse_stat(read_text_file(u.dir / "unit.log")));
+                 if (u.has_table) {
+                   const auto table = parse_stat(read_text_file(u.dir / "table.log"));
+                   c.table = table_area(table);
+                   table_own[i] = own_areas(table);
+                 }
+                 if (options.no_archive) return;
+                 const nlohmann::json entry = {
+                     {"design", c.design.name},
+                     {"widths", describe(c.widths)},
+                     {"rtl_hash", rtl},
+                     {"logic_area_um2", c.logic},
+                     {"flop_table_area_um2", c.table},
+                     {"own_area", {{"unit", unit_own[i]}, {"table", table_own[i]}}},
+                     {"inventory",
+                      {{"unit", inventory_json(c.coarse.unit)}, {"table", inventory_json(c.coarse.table)}}}};
+                 std::lock_guard<std::mutex> guard(archive_mutex);
+                 updated[keys[i]] = entry;
+                 write_file_atomic(archive_path,
+                                   nlohmann::json{{"flow", kCoarseFlow}, {"configurations", updated}}.dump() + "\n");
+               });
+  if (!options.no_archive && !pending.empty())
+    fmt::print("wrote {} ({} configurations)\n", archive_path, updated.size());
 
   // Samples: every distinct module with its synthesised own area.
   std::vector<AreaSample> samples;
@@ -674,24 +696,6 @@ int run_area_model_command(const AreaModelOptions& options) {
   write_file_atomic(write_path, model.dump(1) + "\n");
   fmt::print("\nwrote {} ({} module kinds, {} module samples)\n", write_path, coefficients.size(),
              samples.size());
-  if (!options.no_archive && !pending.empty()) {
-    // Every configuration of this calibration, and those of earlier ones on the same RTL.
-    nlohmann::json updated = nlohmann::json::object();
-    const std::string rtl = rtl_sources_hash();
-    for (const auto& [key, a] : archive.items())
-      if (a.value("rtl_hash", "") == rtl) updated[key] = a;
-    for (size_t i = 0; i < configs.size(); ++i)
-      updated[keys[i]] = {{"design", configs[i].design.name},
-                          {"widths", describe(configs[i].widths)},
-                          {"rtl_hash", rtl},
-                          {"logic_area_um2", configs[i].logic},
-                          {"flop_table_area_um2", configs[i].table},
-                          {"own_area", {{"unit", unit_own[i]}, {"table", table_own[i]}}},
-                          {"inventory", {{"unit", inventory_json(configs[i].coarse.unit)},
-                                         {"table", inventory_json(configs[i].coarse.table)}}}};
-    write_file_atomic(archive_path, nlohmann::json{{"flow", kCoarseFlow}, {"configurations", updated}}.dump() + "\n");
-    fmt::print("wrote {} ({} configurations)\n", archive_path, updated.size());
-  }
   if (!options.json_path.empty()) {
     write_file_atomic(options.json_path, model.at("calibration").dump(2) + "\n");
     fmt::print("wrote {}\n", options.json_path);
