@@ -157,7 +157,7 @@ namespace area_detail {
 std::vector<fs::path> rtl_sources_of(const std::string& top) {
   std::vector<fs::path> sources;
   for (const char* file : kScanUnitRtlFiles) sources.push_back(fs::path(kRtlDir) / file);
-  if (top == "adaptive_unit")
+  if (top == kAdaptiveUnitTop)
     for (const char* file : kAdaptiveRtlFiles) sources.push_back(fs::path(kRtlDir) / file);
   std::sort(sources.begin(), sources.end());
   return sources;
@@ -176,7 +176,7 @@ UnitConfig prepare_unit(const Design& design, const Widths& widths, const AreaOp
   // The unit elaborated with this design's hardware only (rtl/cd_scan_unit.sv),
   // or the adaptive design's unit (rtl/adaptive_unit.sv: its split engine and
   // an affine-only scan unit, elaborated by the unit itself, at the leaves' widths).
-  c.top = rtl_top(design) == RtlTop::AdaptiveUnit ? "adaptive_unit" : "cd_scan_unit";
+  c.top = rtl_top(design) == RtlTop::AdaptiveUnit ? kAdaptiveUnitTop : kScanUnitTop;
   c.has_table = design.kind == Design::Kind::ConstantDepth;
   const bool has_divide = design.kind == Design::Kind::Divide;
   const bool has_sub = design.kind == Design::Kind::Affine && design.subdivision != 0;
@@ -185,9 +185,9 @@ UnitConfig prepare_unit(const Design& design, const Widths& widths, const AreaOp
   // exact points' in affine-subN and quad-subN.
   // The adaptive design's is its split engine's (the midpoints' 1/q).
   c.reciprocal_owner = c.has_table ? "setup_engine" : has_divide ? "pixel_divide"
-                       : has_sub ? "exact_points" : c.top == "adaptive_unit" ? "adaptive_split" : "";
+                       : has_sub ? "exact_points" : c.top == kAdaptiveUnitTop ? "adaptive_split" : "";
   std::string parameters;
-  if (c.top == "cd_scan_unit")
+  if (c.top == kScanUnitTop)
     for (const UnitParameter& p : unit_parameters({&design}))
       parameters += fmt::format("-set {} {} ", p.name, p.value);
   parameters += "-set HasObservation 0";
@@ -197,7 +197,7 @@ UnitConfig prepare_unit(const Design& design, const Widths& widths, const AreaOp
   // this one's syntheses.
   const fs::path rtl_dir = kRtlDir;
   const std::vector<fs::path> sources = rtl_sources_of(c.top);
-  c.header = c.top == "adaptive_unit" ? rtl_header(adaptive_leaf_widths(widths), "area, adaptive leaf unit")
+  c.header = c.top == kAdaptiveUnitTop ? rtl_header(adaptive_leaf_widths(widths), "area, adaptive leaf unit")
                                       : rtl_header(widths, "area");
   uint64_t hash = fnv1a(kFlowVersion);
   hash = fnv1a(c.header, hash);
@@ -261,7 +261,7 @@ nlohmann::json block_areas(const std::map<std::string, ModuleStat>& unit, const 
     for (const auto& [sub, count] : unit.at(top).submodules) {
       const std::string base = base_name(sub);
       if (base == "scanline_table") continue;
-      if (base == "cd_scan_unit") {  // the adaptive unit's leaf unit
+      if (base == kScanUnitTop) {  // the adaptive unit's leaf unit
         add_blocks(sub);
         continue;
       }

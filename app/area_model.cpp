@@ -20,6 +20,7 @@
 #include "cli_checks.hpp"
 #include "common.hpp"
 #include "progress.hpp"
+#include "rtl_sources.hpp"
 
 namespace cdsim {
 
@@ -236,7 +237,7 @@ std::string default_area_model_path() { return (fs::path(kRtlDir) / "area_model.
 
 std::string rtl_sources_hash() {
   uint64_t hash = fnv1a(kCoarseFlow);
-  for (const fs::path& source : rtl_sources_of("cd_scan_unit")) hash = fnv1a(read_text_file(source), hash);
+  for (const fs::path& source : rtl_sources_of(kScanUnitTop)) hash = fnv1a(read_text_file(source), hash);
   return fmt::format("{:016x}", hash);
 }
 
@@ -618,7 +619,7 @@ int run_area_model_command(const AreaModelOptions& options) {
   for (size_t i = 0; i < configs.size(); ++i) {
     const auto coefficients = fit_area_coefficients(samples, i);
     Row& r = rows[i];
-    const double unit = predicted_total(configs[i].coarse.unit, top_of(configs[i].coarse.unit, "cd_scan_unit"),
+    const double unit = predicted_total(configs[i].coarse.unit, top_of(configs[i].coarse.unit, kScanUnitTop),
                                         coefficients, r.missing);
     r.unit_error = (unit - configs[i].logic) / configs[i].logic;
     if (!configs[i].coarse.table.empty()) {

@@ -1,6 +1,8 @@
-# The RTL files each top reads, named once: sim/CMakeLists.txt verilates them,
+# The two tops and the RTL files each reads, named once: sim/CMakeLists.txt verilates them,
 # and cdsim area (app/area.cpp) synthesises and hashes them through the header
 # cdsim_write_rtl_sources_header() writes.
+set(CDSIM_RTL_TOP cd_scan_unit)
+set(CDSIM_RTL_ADAPTIVE_TOP adaptive_unit)
 set(CDSIM_RTL_FILES
   cd_scan_unit.sv setup_engine.sv reciprocal.sv reciprocal_operand.sv plane_accumulator.sv
   affine_setup.sv affine_sub_datapath.sv quad_sub_datapath.sv exact_points.sv kim_datapath.sv
@@ -16,6 +18,8 @@ function(cdsim_write_rtl_sources_header output)
 "// Generated from cmake/rtl_sources.cmake: the RTL files (in rtl/) each top reads.
 #pragma once
 namespace cdsim {
+inline constexpr const char* kScanUnitTop = \"${CDSIM_RTL_TOP}\";
+inline constexpr const char* kAdaptiveUnitTop = \"${CDSIM_RTL_ADAPTIVE_TOP}\";
 inline constexpr const char* kScanUnitRtlFiles[] = {\"${scan}\"};
 // The adaptive unit's own files; it reads kScanUnitRtlFiles too.
 inline constexpr const char* kAdaptiveRtlFiles[] = {\"${adaptive}\"};
