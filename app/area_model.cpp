@@ -584,7 +584,9 @@ int run_area_model_command(const AreaModelOptions& options) {
     return out;
   };
   std::mutex archive_mutex;
-  run_parallel(pending.size(), options.jobs, "area-model", "configurations (Yosys synthesis + elaboration, cached)",
+  const char* what = to_elaborate == pending.size() ? "configurations (Yosys elaboration; syntheses archived)"
+                                                    : "configurations (Yosys synthesis + elaboration, cached)";
+  run_parallel(pending.size(), options.jobs, "area-model", what,
                [&](size_t k) {
                  const size_t i = pending[k];
                  CalibrationConfig& c = configs[i];
