@@ -30,11 +30,12 @@ using namespace area_detail;
 namespace {
 
 // Bumped whenever the elaboration below or the features change.
-constexpr const char* kCoarseFlow = "coarse-flow-1";
+constexpr const char* kCoarseFlow = "coarse-flow-2";
 constexpr size_t kFeatureCount = kAreaFeatures.size();
 
 enum Feature : size_t {
-  kMul, kAdd, kCompare, kEqual, kMux, kPmux, kFlop, kAsyncFlop, kShift, kLogic, kReduce, kOther
+  kMul, kAdd, kCompare, kEqual, kMux, kPmux, kFlop, kAsyncFlop, kShift, kLogic, kReduce, kOther,
+  kConstAdd, kRom
 };
 
 // Bits of a connection that are not constants (Yosys JSON: net numbers, or
@@ -66,6 +67,9 @@ void add_cell_features(const std::string& type, const nlohmann::json& cell, Area
     double bits = 0;
     for (int i = 0; i < a; ++i) bits += std::max(0, std::min(b, y - i));
     f[kMul] += bits;
+  } else if (is({"$add", "$sub", "$alu"}) && (live_bits(cell, "A") == 0 || live_bits(cell, "B") == 0)) {
+    // A constant operand (i + 1, the Kim chain's unit steps): half adders.
+    f[kConstAdd] += port_width(cell, "Y");
   } else if (is({"$add", "$sub", "$neg", "$alu"})) {
     f[kAdd] += port_width(cell, "Y");
   } else if (is({"$lt", "$le", "$gt", "$ge"})) {
@@ -80,6 +84,10 @@ void add_cell_features(const std::string& type, const nlohmann::json& cell, Area
     f[kAsyncFlop] += port_width(cell, "Q");
   } else if (type.find("dff") != std::string::npos) {
     f[kFlop] += port_width(cell, "Q");
+  } else if (is({"$shift", "$shiftx"}) && live_bits(cell, "A") == 0) {
+    // A part-select of a constant vector is a ROM (cd-persp's 1/m table):
+    // its logic grows with the table's bits, not with the index's.
+    f[kRom] += port_width(cell, "A");
   } else if (is({"$shl", "$shr", "$sshl", "$sshr", "$shift", "$shiftx"})) {
     f[kShift] += port_width(cell, "Y") * std::max(1.0, live_bits(cell, "B"));
   } else if (is({"$and", "$or", "$xor", "$xnor", "$not"})) {
@@ -235,8 +243,8 @@ std::string liberty_name(const std::string& liberty) { return fs::path(liberty).
 
 std::string default_area_model_path() { return (fs::path(kRtlDir) / "area_model.json").string(); }
 
-std::string rtl_sources_hash() {
-  uint64_t hash = fnv1a(kCoarseFlow);
+std::string rtl_sources_hash(const std::string& flow) {
+  uint64_t hash = fnv1a(flow.empty() ? std::string(kCoarseFlow) : flow);
   for (const fs::path& source : rtl_sources_of(kScanUnitTop)) hash = fnv1a(read_text_file(source), hash);
   return fmt::format("{:016x}", hash);
 }
@@ -247,14 +255,25 @@ nlohmann::json load_area_archive(const std::string& path) {
   if (!fs::exists(path)) return nlohmann::json::object();
   try {
     const nlohmann::json j = nlohmann::json::parse(read_text_file(path));
-    if (j.at("flow").get<std::string>() != kCoarseFlow) {
-      std::cerr << fmt::format("area-model: {} is for flow {}, this build uses {}; not reused\n", path,
-                               j.at("flow").get<std::string>(), kCoarseFlow);
-      return nlohmann::json::object();
-    }
+    const std::string flow = j.at("flow").get<std::string>();
     const nlohmann::json& configs = j.at("configurations");
     if (!configs.is_object()) throw std::runtime_error("'configurations' is not an object");
-    return configs;
+    if (flow == kCoarseFlow) return configs;
+    // Another elaboration flow: the syntheses stand if the sources are those
+    // they were made of; the inventories are elaborated again.
+    const std::string old_sources = rtl_sources_hash(flow);
+    nlohmann::json kept = nlohmann::json::object();
+    for (const auto& [key, entry] : configs.items()) {
+      if (entry.value("rtl_hash", "") != old_sources) continue;
+      nlohmann::json e = entry;
+      e.erase("inventory");
+      e["rtl_hash"] = rtl_sources_hash();
+      kept[key] = e;
+    }
+    std::cerr << fmt::format("area-model: {} is for elaboration flow {}, this build uses {}: {} of {} "
+                             "syntheses kept (the RTL unchanged), to be elaborated again\n",
+                             path, flow, kCoarseFlow, kept.size(), configs.size());
+    return kept;
   } catch (const std::exception& e) {
     throw std::runtime_error(fmt::format("{}: not a usable calibration archive: {}", path, e.what()));
   }
@@ -516,31 +535,39 @@ int run_area_model_command(const AreaModelOptions& options) {
   const nlohmann::json archive = options.no_archive ? nlohmann::json::object() : load_area_archive(archive_path);
   std::vector<std::string> keys(configs.size());
   std::vector<size_t> pending;
+  // Synthesised (from the archive); pending then means elaborated only.
+  std::vector<char> synthesised(configs.size(), 0);
   std::vector<std::map<std::string, double>> unit_own(configs.size()), table_own(configs.size());
   for (size_t i = 0; i < configs.size(); ++i) {
     keys[i] = prepare_unit(configs[i].design, configs[i].widths, area).dir.filename().string();
     if (archive.contains(keys[i])) {
       const nlohmann::json& a = archive.at(keys[i]);
-      configs[i].coarse.unit = inventory_of(a.at("inventory").at("unit"));
-      configs[i].coarse.table = inventory_of(a.at("inventory").at("table"));
       configs[i].logic = a.at("logic_area_um2").get<double>();
       configs[i].table = a.at("flop_table_area_um2").get<double>();
       unit_own[i] = a.at("own_area").at("unit").get<std::map<std::string, double>>();
       table_own[i] = a.at("own_area").at("table").get<std::map<std::string, double>>();
-    } else {
-      pending.push_back(i);
+      synthesised[i] = 1;
+      if (a.contains("inventory")) {
+        configs[i].coarse.unit = inventory_of(a.at("inventory").at("unit"));
+        configs[i].coarse.table = inventory_of(a.at("inventory").at("table"));
+        continue;
+      }
     }
+    pending.push_back(i);
   }
-  fmt::print("{} of {} configurations from {}{}\n", configs.size() - pending.size(), configs.size(),
+  const size_t to_elaborate =
+      static_cast<size_t>(std::count_if(pending.begin(), pending.end(), [&](size_t i) { return synthesised[i]; }));
+  fmt::print("{} of {} configurations from {}{}{}\n", configs.size() - pending.size(), configs.size(),
              options.no_archive ? "an archive (none given)" : archive_path,
-             pending.empty() ? "" : "; the others are synthesised and elaborated");
+             to_elaborate ? fmt::format("; {} synthesised there, to be elaborated again", to_elaborate) : "",
+             pending.size() > to_elaborate ? "; the others are synthesised and elaborated" : "");
   std::fflush(stdout);
   if (!pending.empty() && options.archive_only) {
     std::string missing;
     for (size_t k = 0; k < std::min<size_t>(pending.size(), 5); ++k)
       missing += fmt::format("\n  {} {}", configs[pending[k]].design.name, describe(configs[pending[k]].widths));
-    throw std::runtime_error(fmt::format("area-model --archive-only: {} of {} configurations are not in {}, "
-                                         "for example:{}",
+    throw std::runtime_error(fmt::format("area-model --archive-only: {} of {} configurations are not in {} "
+                                         "or lack this flow's elaboration, for example:{}",
                                          pending.size(), configs.size(), archive_path, missing));
   }
 
@@ -557,15 +584,17 @@ int run_area_model_command(const AreaModelOptions& options) {
     return out;
   };
   std::mutex archive_mutex;
-  run_parallel(pending.size(), options.jobs, "area-model", "configurations (Yosys synthesis + elaboration, cached)",
+  const char* what = to_elaborate == pending.size() ? "configurations (Yosys elaboration; syntheses archived)"
+                                                    : "configurations (Yosys synthesis + elaboration, cached)";
+  run_parallel(pending.size(), options.jobs, "area-model", what,
                [&](size_t k) {
                  const size_t i = pending[k];
                  CalibrationConfig& c = configs[i];
-                 c.logic = synthesise_area(c.design, c.widths, area).logic_area_um2;
+                 if (!synthesised[i]) c.logic = synthesise_area(c.design, c.widths, area).logic_area_um2;
                  const UnitConfig u = prepare_unit(c.design, c.widths, area);
                  c.coarse = coarse_pass(u);
-                 unit_own[i] = own_areas(parse_stat(read_text_file(u.dir / "unit.log")));
-                 if (u.has_table) {
+                 if (!synthesised[i]) unit_own[i] = own_areas(parse_stat(read_text_file(u.dir / "unit.log")));
+                 if (u.has_table && !synthesised[i]) {
                    const auto table = parse_stat(read_text_file(u.dir / "table.log"));
                    c.table = table_area(table);
                    table_own[i] = own_areas(table);

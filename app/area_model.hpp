@@ -24,9 +24,10 @@
 
 namespace cdsim {
 
-inline constexpr std::array<const char*, 12> kAreaFeatures = {
+inline constexpr std::array<const char*, 14> kAreaFeatures = {
     "mul_pp_bits", "add_bits",   "compare_bits", "equal_bits", "mux_bits",   "pmux_bits",
-    "flop_bits",   "async_flop_bits", "shift_bits", "logic_bits", "reduce_bits", "other_bits"};
+    "flop_bits",   "async_flop_bits", "shift_bits", "logic_bits", "reduce_bits", "other_bits",
+    "const_add_bits", "rom_bits"};
 using AreaFeatures = std::array<double, kAreaFeatures.size()>;
 // A kind is fitted on its own when it has kSamplesPerFeature samples for
 // each feature its samples have (not zero in all of them); otherwise its
@@ -47,12 +48,16 @@ struct AreaModel {
 // it is missing or malformed.
 AreaModel load_area_model(const std::string& path);
 std::string default_area_model_path();
-// A hash of the scan unit's RTL sources (those the model is calibrated on) and the flow.
-std::string rtl_sources_hash();
+// A hash of the scan unit's RTL sources (those the model is calibrated on) and
+// the elaboration flow (default: this build's).
+std::string rtl_sources_hash(const std::string& flow = "");
 // The calibration archive (default: rtl/area_calibration.json): per
 // configuration key, its synthesised areas and elaborated inventory, so that a
 // calibration need not synthesise again what an earlier one did. Empty when the
-// file is missing or for another flow; throws naming the file when malformed.
+// file is missing. An archive of another elaboration flow keeps the synthesis
+// figures of every entry whose RTL sources are unchanged and drops their
+// inventories, which the calibration then elaborates again. Throws naming the
+// file when malformed.
 nlohmann::json load_area_archive(const std::string& path);
 std::string default_area_archive_path();
 

@@ -10,6 +10,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <fstream>
 #include <random>
 #include <vector>
 
@@ -68,6 +70,40 @@ TEST(AreaModel, EachCellTypeCountsInItsOwnFeature) {
   only(features_of("$shl", {{"A", port(16)}, {"B", port(4, 28)}, {"Y", port(16)}}), feature("shift_bits"), 64);
   only(features_of("$xor", {{"A", port(3)}, {"B", port(3)}, {"Y", port(3)}}), feature("logic_bits"), 3);
   only(features_of("$reduce_or", {{"A", port(20)}, {"Y", port(1)}}), feature("reduce_bits"), 20);
+  // An adder with a constant operand (i + 1) is an incrementer, counted apart.
+  only(features_of("$add", {{"A", port(12)}, {"B", port(0, 1)}, {"Y", port(13)}}), feature("const_add_bits"), 13);
+  only(features_of("$sub", {{"A", port(0, 8)}, {"B", port(8)}, {"Y", port(8)}}), feature("const_add_bits"), 8);
+  // A part-select of a constant vector is a ROM: its bits, not the index's.
+  only(features_of("$shiftx", {{"A", port(0, 257 * 31)}, {"B", port(14)}, {"Y", port(31)}}), feature("rom_bits"),
+       257 * 31);
+  only(features_of("$shiftx", {{"A", port(40)}, {"B", port(3)}, {"Y", port(8)}}), feature("shift_bits"), 24);
+}
+
+// An archive of another elaboration flow keeps the syntheses of unchanged RTL
+// and drops their inventories (to be elaborated again); other RTL is dropped.
+TEST(AreaModel, ArchiveOfAnotherFlowKeepsTheSynthesesOfTheSameRtl) {
+  const std::string old_flow = "coarse-flow-0";
+  const nlohmann::json entry = {{"design", "divide"},
+                                {"logic_area_um2", 1000.0},
+                                {"flop_table_area_um2", 0.0},
+                                {"own_area", {{"unit", {{"m", 1000.0}}}, {"table", nlohmann::json::object()}}},
+                                {"inventory", {{"unit", nlohmann::json::object()}, {"table", nlohmann::json::object()}}}};
+  nlohmann::json same = entry, other = entry;
+  same["rtl_hash"] = cdsim::rtl_sources_hash(old_flow);
+  other["rtl_hash"] = "0123456789abcdef";
+  const std::string path = ::testing::TempDir() + "/old_flow_archive.json";
+  {
+    std::ofstream out(path);
+    out << nlohmann::json{{"flow", old_flow}, {"configurations", {{"same", same}, {"other", other}}}}.dump();
+  }
+  const nlohmann::json kept = cdsim::load_area_archive(path);
+  ASSERT_EQ(kept.size(), 1u);
+  ASSERT_TRUE(kept.contains("same"));
+  EXPECT_FALSE(kept.at("same").contains("inventory"));
+  EXPECT_EQ(kept.at("same").at("rtl_hash"), cdsim::rtl_sources_hash());
+  EXPECT_NE(cdsim::rtl_sources_hash(), cdsim::rtl_sources_hash(old_flow));
+  EXPECT_EQ(kept.at("same").at("logic_area_um2"), 1000.0);
+  std::remove(path.c_str());
 }
 
 // Samples of two kinds made by known coefficients (with a little noise): the
