@@ -130,7 +130,7 @@ TEST(AreaModel, FitRecoversTheCoefficientsPerKindAndLeavesTheConfigurationOut) {
   // A wild sample in configuration 3: the fit without it must not feel it.
   samples.push_back({"a", samples[0].features, 1e9, 3});
   // Kind "c" has too few samples for a fit of its own (one short of two per
-  // feature, all twelve in use): it takes the fit of all kinds.
+  // feature, all of them in use): it takes the fit of all kinds.
   for (size_t config = 0; config < cdsim::kSamplesPerFeature * cdsim::kAreaFeatures.size() - 1; ++config)
     samples.push_back({"c", samples[2 * config].features, samples[2 * config].area, config});
   const auto without = cdsim::fit_area_coefficients(samples, 3);
