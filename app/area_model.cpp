@@ -261,13 +261,13 @@ nlohmann::json load_area_archive(const std::string& path) {
     if (flow == kCoarseFlow) return configs;
     // Another elaboration flow: the syntheses stand if the sources are those
     // they were made of; the inventories are elaborated again.
-    const std::string old_sources = rtl_sources_hash(flow);
+    const std::string old_sources = rtl_sources_hash(flow), sources = rtl_sources_hash();
     nlohmann::json kept = nlohmann::json::object();
     for (const auto& [key, entry] : configs.items()) {
       if (entry.value("rtl_hash", "") != old_sources) continue;
       nlohmann::json e = entry;
       e.erase("inventory");
-      e["rtl_hash"] = rtl_sources_hash();
+      e["rtl_hash"] = sources;
       kept[key] = e;
     }
     std::cerr << fmt::format("area-model: {} is for elaboration flow {}, this build uses {}: {} of {} "
@@ -584,20 +584,22 @@ int run_area_model_command(const AreaModelOptions& options) {
     return out;
   };
   std::mutex archive_mutex;
-  const char* what = to_elaborate == pending.size() ? "configurations (Yosys elaboration; syntheses archived)"
+  const char* progress_label = to_elaborate == pending.size() ? "configurations (Yosys elaboration; syntheses archived)"
                                                     : "configurations (Yosys synthesis + elaboration, cached)";
-  run_parallel(pending.size(), options.jobs, "area-model", what,
+  run_parallel(pending.size(), options.jobs, "area-model", progress_label,
                [&](size_t k) {
                  const size_t i = pending[k];
                  CalibrationConfig& c = configs[i];
                  if (!synthesised[i]) c.logic = synthesise_area(c.design, c.widths, area).logic_area_um2;
                  const UnitConfig u = prepare_unit(c.design, c.widths, area);
                  c.coarse = coarse_pass(u);
-                 if (!synthesised[i]) unit_own[i] = own_areas(parse_stat(read_text_file(u.dir / "unit.log")));
-                 if (u.has_table && !synthesised[i]) {
-                   const auto table = parse_stat(read_text_file(u.dir / "table.log"));
-                   c.table = table_area(table);
-                   table_own[i] = own_areas(table);
+                 if (!synthesised[i]) {
+                   unit_own[i] = own_areas(parse_stat(read_text_file(u.dir / "unit.log")));
+                   if (u.has_table) {
+                     const auto table = parse_stat(read_text_file(u.dir / "table.log"));
+                     c.table = table_area(table);
+                     table_own[i] = own_areas(table);
+                   }
                  }
                  if (options.no_archive) return;
                  const nlohmann::json entry = {
