@@ -584,8 +584,9 @@ int run_area_model_command(const AreaModelOptions& options) {
     return out;
   };
   std::mutex archive_mutex;
-  const char* progress_label = to_elaborate == pending.size() ? "configurations (Yosys elaboration; syntheses archived)"
-                                                    : "configurations (Yosys synthesis + elaboration, cached)";
+  const char* progress_label = to_elaborate == pending.size()
+                                   ? "configurations (Yosys elaboration; syntheses archived)"
+                                   : "configurations (Yosys synthesis + elaboration, cached)";
   run_parallel(pending.size(), options.jobs, "area-model", progress_label,
                [&](size_t k) {
                  const size_t i = pending[k];
