@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "design.hpp"
+#include "setup_schedule.hpp"
 
 namespace cdsim {
 
@@ -91,7 +92,18 @@ DerivedWidths derive(const Widths& w) {
   d.div_cycles = ceil_div_int(
       std::max({d.g_div_quotient_bits, d.bound_div_quotient_bits, d.slope_div_quotient_bits}),
       w.div_bits_per_cycle);
-  d.setup_cycles = 4 + d.div_cycles;
+  const SetupSchedule schedule = setup_schedule(w, d);
+  d.setup_stage_a = schedule.stage_cycle[0];
+  d.setup_stage_b = schedule.stage_cycle[1];
+  d.setup_stage_c = schedule.stage_cycle[2];
+  d.setup_div_done = schedule.div_done;
+  d.setup_stage_d = schedule.stage_cycle[3];
+  d.setup_stage_e = schedule.stage_cycle[4];
+  d.setup_cycles = schedule.setup_cycles;
+  d.setup_count_bits = bits_for_unsigned(d.setup_cycles - 1);
+  d.setup_operand_a_bits = schedule.operand_a_bits;
+  d.setup_operand_b_bits = schedule.operand_b_bits;
+  d.setup_acc_bits = schedule.acc_bits;
   // affine's planes of u and v: a value at a pixel is the reference plus up to
   // 2^13 steps along each axis; its dividers (t_bits or s_bits quotients) resolve
   // enough bits a cycle to finish with the others (at most 58 / 5 = 12).
@@ -143,6 +155,7 @@ std::string rtl_header(const Widths& w, const std::string& config) {
   out += "// cd-persp's word goes on: eps, eps_saturated (persp_word_bits in all)\n";
   out += fmt::format("`define CD_WORD_EPS_LSB {}\n", d.word_bits);
   out += fmt::format("`define CD_WORD_EPS_SATURATED_BIT {}\n", d.word_bits + d.eps_bits);
+  out += setup_schedule_defines(setup_schedule(w, d));
   out += "`endif\n";
   return out;
 }

@@ -8,11 +8,13 @@
 // (A_x 2^subpixel_bits, A_y 2^subpixel_bits) to s_int.s_frac. One flag,
 // saturated_o, says any of the six saturated.
 //
-// Timing, on the setup engine's stage count: stage B (count 1) forms the
-// coefficients, stage C (count 2) the numerators and starts six serial
-// dividers, which resolve CD_AFFINE_DIV_BITS_PER_CYCLE bits a cycle so that
-// they finish with the setup engine's by stage D (count 2 + DivCycles), where
-// the results are rounded, saturated and held until the next triangle.
+// Timing, on the setup engine's stage count: with the setup engine's stage B
+// (CD_SETUP_STAGE_B) it forms the coefficients, with its stage C the
+// numerators, and starts six serial dividers, which resolve
+// CD_AFFINE_DIV_BITS_PER_CYCLE bits a cycle so that they finish with the
+// setup engine's (CD_SETUP_DIV_DONE), where the results are rounded,
+// saturated and held until the next triangle. Its multiplies are its own
+// (not on the setup engine's shared multipliers).
 `include "cd_widths.svh"
 `default_nettype none
 
@@ -20,7 +22,7 @@ module affine_setup (
   input  logic                               clk_i,
   input  logic                               rst_ni,
   input  logic                               setup_i,
-  input  logic [7:0]                         stage_count_i,
+  input  logic [`CD_SETUP_COUNT_BITS-1:0]    stage_count_i,
   // From the setup engine, valid from stage B (the vertices as loaded, and
   // stage A's differences, determinant and reference offsets).
   input  logic [3*`CD_UV_BITS-1:0]           u_vertex_i,
@@ -32,7 +34,7 @@ module affine_setup (
   input  logic signed [`CD_DET_BITS-1:0]     det_i,
   input  logic signed [`CD_DIFF_BITS-1:0]    ref_x_i,
   input  logic signed [`CD_DIFF_BITS-1:0]    ref_y_i,
-  input  logic                               x_major_i,  // valid from stage D
+  input  logic                               x_major_i,  // valid after the setup engine's stage C
   // Results, valid from the cycle after stage D.
   output logic signed [`CD_AFFINE_REF_BITS-1:0] u_ref_o,
   output logic signed [`CD_AFFINE_REF_BITS-1:0] v_ref_o,
@@ -51,7 +53,7 @@ module affine_setup (
   localparam int SFrac        = `CD_S_FRAC;
   localparam int RefBits      = `CD_AFFINE_REF_BITS;
   localparam int SBits        = `CD_S_BITS;
-  localparam int DivCycles    = `CD_DIV_CYCLES;
+  localparam int CountBits    = `CD_SETUP_COUNT_BITS;
   localparam int BitsPerCycle = `CD_AFFINE_DIV_BITS_PER_CYCLE;
   // |dA| < 2^UvBits, |dy| < 2^(DiffBits - 1): two products and their difference.
   localparam int CoefBits     = UvBits + DiffBits + 1;
@@ -63,9 +65,9 @@ module affine_setup (
   localparam int StepNumBits  = CoefBits + SubpixelBits + SFrac + 2;
 
   logic stage_b, stage_c, stage_d;
-  assign stage_b = setup_i && stage_count_i == 8'd1;
-  assign stage_c = setup_i && stage_count_i == 8'd2;
-  assign stage_d = setup_i && stage_count_i == 8'(2 + DivCycles);
+  assign stage_b = setup_i && stage_count_i == CountBits'(`CD_SETUP_STAGE_B);
+  assign stage_c = setup_i && stage_count_i == CountBits'(`CD_SETUP_STAGE_C);
+  assign stage_d = setup_i && stage_count_i == CountBits'(`CD_SETUP_DIV_DONE);
 
   // ---------------------------------------------------------------- stage B
   logic signed [UvBits-1:0]   u0, u1, u2, v0, v1, v2;

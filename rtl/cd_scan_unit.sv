@@ -377,7 +377,7 @@ module cd_scan_unit #(
     .correction_i      (correction_i && HasCorrection),
     .hold_i            (hold),
     .setup_i           (front_q == FrSetup),
-    .stage_count_i     (8'(fcount_q)),
+    .stage_count_i     (`CD_SETUP_COUNT_BITS'(fcount_q)),
     .empty_o           (setup_empty),
     .x_major_o         (s_x_major),
     .g_o               (s_g),
@@ -621,7 +621,7 @@ module cd_scan_unit #(
     affine_setup u_affine_setup (
       .clk_i, .rst_ni,
       .setup_i      (front_q == FrSetup && f_mode_affine),
-      .stage_count_i(8'(fcount_q)),
+      .stage_count_i(`CD_SETUP_COUNT_BITS'(fcount_q)),
       .u_vertex_i   (u_vertex),
       .v_vertex_i   (v_vertex),
       .dx1_i        (geometry_dx1),

@@ -6,13 +6,17 @@
 // every signal has the width derived for it in model/derived_widths.cpp.
 //
 // Timing (docs/rtl.md, "Setup engine"): stage_count_i counts the setup cycles
-// 0 .. SetupCycles-1 after the triangle is loaded.
+// 0 .. SetupCycles-1 after the triangle is loaded. Each stage reads its sums
+// of products (setup_multipliers.sv) and registers what it forms in one
+// cycle, CD_SETUP_STAGE_A .. E; with shared multipliers the products run in
+// the cycles before it, while the stage's operands hold still (its window).
+// With CD_SETUP_MULTIPLIERS = 0 (every product its own multiplier):
 //   0        stage A: edges, det, box, q normalisation, U = u q, V = v q
 //   1        stage B: plane coefficients, q |det|
 //   2        stage C: planes at the reference, orientation, shift; the serial
 //            dividers start (g, and per edge its first span end and its step)
 //   2 + Div  stage D: divider results, normalised planes, S numerators, line
-//            range, edge trackers
+//            range, edge trackers (CD_SETUP_DIV_DONE: its products start here)
 //   3 + Div  stage E: q, U, V on the first line of the first band
 // The fill issues one line per fill_valid_i cycle into the reciprocal
 // pipeline; RecipLatency cycles later its table word appears on write_*_o.
@@ -59,7 +63,7 @@ module setup_engine #(
   // writes nothing; the stages, on the held stage count, reload what they hold.
   input  logic                       hold_i,
   input  logic                       setup_i,
-  input  logic [7:0]                 stage_count_i,
+  input  logic [`CD_SETUP_COUNT_BITS-1:0] stage_count_i,
   // Results, valid from stage E on.
   output logic                       empty_o,
   output logic                       x_major_o,
@@ -152,11 +156,22 @@ module setup_engine #(
   localparam int ExponentBits = `CD_EXPONENT_BITS;
   localparam int TBits        = `CD_T_BITS;
   localparam int SBits        = `CD_S_BITS;
-  localparam int DivCycles    = `CD_DIV_CYCLES;
   localparam int GDivQuoBits  = `CD_G_DIV_QUOTIENT_BITS;
   localparam int BoundDivQuoBits = `CD_BOUND_DIV_QUOTIENT_BITS;
   localparam int SlopeDivQuoBits = `CD_SLOPE_DIV_QUOTIENT_BITS;
   localparam int DivBitsPerCycle = `CD_DIV_BITS_PER_CYCLE;
+  localparam int CountBits    = `CD_SETUP_COUNT_BITS;
+  localparam int StageA       = `CD_SETUP_STAGE_A;
+  localparam int StageB       = `CD_SETUP_STAGE_B;
+  localparam int StageC       = `CD_SETUP_STAGE_C;
+  localparam int DivDone      = `CD_SETUP_DIV_DONE;
+  localparam int StageD       = `CD_SETUP_STAGE_D;
+  localparam int StageE       = `CD_SETUP_STAGE_E;
+  localparam int TermCount    = `CD_SETUP_TERM_COUNT;
+  localparam int ResultCount  = `CD_SETUP_RESULT_COUNT;
+  localparam int OperandABits = `CD_SETUP_OPERAND_A_BITS;
+  localparam int OperandBBits = `CD_SETUP_OPERAND_B_BITS;
+  localparam int AccBits      = `CD_SETUP_ACC_BITS;
 
   // Exact values before the per-triangle shift.
   localparam int AxisQBits    = CoefQBits + SubpixelBits;   // q per pixel (coef 2^sp)
@@ -219,11 +234,32 @@ module setup_engine #(
   end
 
   logic stage_a, stage_b, stage_c, stage_d, stage_e;
-  assign stage_a = setup_i && stage_count_i == 8'd0;
-  assign stage_b = setup_i && stage_count_i == 8'd1;
-  assign stage_c = setup_i && stage_count_i == 8'd2;
-  assign stage_d = setup_i && stage_count_i == 8'(2 + DivCycles);
-  assign stage_e = setup_i && stage_count_i == 8'(3 + DivCycles);
+  logic window_a, window_b, window_c, window_d;
+  assign stage_a = setup_i && stage_count_i == CountBits'(StageA);
+  assign stage_b = setup_i && stage_count_i == CountBits'(StageB);
+  assign stage_c = setup_i && stage_count_i == CountBits'(StageC);
+  assign stage_d = setup_i && stage_count_i == CountBits'(StageD);
+  assign stage_e = setup_i && stage_count_i == CountBits'(StageE);
+  // A stage's operands are formed from its first product cycle to its own.
+  assign window_a = setup_i && stage_count_i <= CountBits'(StageA);
+  assign window_b = setup_i && stage_count_i > CountBits'(StageA) && stage_count_i <= CountBits'(StageB);
+  assign window_c = setup_i && stage_count_i > CountBits'(StageB) && stage_count_i <= CountBits'(StageC);
+  assign window_d = setup_i && stage_count_i >= CountBits'(DivDone) && stage_count_i <= CountBits'(StageD);
+
+  // The sums of products of every stage (model/setup_terms.def): operands in,
+  // results out, on the shared multipliers or on one multiplier each.
+  logic [TermCount*OperandABits-1:0]   term_a;
+  logic [TermCount*OperandBBits-1:0]   term_b;
+  logic [ResultCount*AccBits-1:0]      products;
+  setup_multipliers u_multipliers (
+    .clk_i,
+    .hold_i,
+    .setup_i,
+    .stage_count_i,
+    .a_i          (term_a),
+    .b_i          (term_b),
+    .result_o     (products)
+  );
 
   // ---------------------------------------------------------------- stage A
   // Edge functions with the top-left rule (model/coverage.cpp make_edges), the
@@ -251,14 +287,46 @@ module setup_engine #(
   localparam logic signed [CoordBits:0] OnePx  = (CoordBits+1)'(1) <<< SubpixelBits;
   localparam logic signed [CoordBits:0] HalfPx = (CoordBits+1)'(1) <<< (SubpixelBits - 1);
 
+  // Stage A's operands: vertex differences, edge vectors and the vertices' q.
   always_comb begin
     dx1 = '0;
     dy1 = '0;
     dx2 = '0;
     dy2 = '0;
-    det = '0;
     for (int i = 0; i < 3; i++) edge_dx[i] = '0;
     for (int i = 0; i < 3; i++) edge_dy[i] = '0;
+    max_exponent = '0;
+    depth_range_d = '0;
+    for (int i = 0; i < 3; i++) q_shift[i] = '0;
+    for (int i = 0; i < 3; i++) q_wide[i] = '0;
+    for (int i = 0; i < 3; i++) q_vertex_d[i] = '0;
+    if (window_a) begin
+      dx1 = DiffBits'(x_q[1]) - DiffBits'(x_q[0]);
+      dy1 = DiffBits'(y_q[1]) - DiffBits'(y_q[0]);
+      dx2 = DiffBits'(x_q[2]) - DiffBits'(x_q[0]);
+      dy2 = DiffBits'(y_q[2]) - DiffBits'(y_q[0]);
+      for (int i = 0; i < 3; i++) begin
+        edge_dx[i] = DiffBits'(x_q[(i + 2) % 3]) - DiffBits'(x_q[(i + 1) % 3]);
+        edge_dy[i] = DiffBits'(y_q[(i + 2) % 3]) - DiffBits'(y_q[(i + 1) % 3]);
+      end
+      // q_i = round(m_i 2^-(E - e_i + 24 - q_bits)); 0 once the shift passes 25.
+      max_exponent = qf_q[0][30:23];
+      for (int i = 1; i < 3; i++) if (qf_q[i][30:23] > max_exponent) max_exponent = qf_q[i][30:23];
+      depth_range_d = 1'b0;
+      for (int i = 0; i < 3; i++) begin
+        q_shift[i] = $signed({2'b00, max_exponent - qf_q[i][30:23]}) + 10'sd24 - 10'(QBits);
+        q_wide[i] = {10'd0, 1'b1, qf_q[i][22:0]};
+        if (q_shift[i] <= 0) q_wide[i] = q_wide[i] << (-q_shift[i]);
+        else if (q_shift[i] > 10'sd25) q_wide[i] = '0;
+        else q_wide[i] = (q_wide[i] + (34'd1 << (q_shift[i] - 10'sd1))) >> q_shift[i];
+        q_vertex_d[i] = QVertexBits'(q_wide[i]);
+        if (q_vertex_d[i] == '0) depth_range_d = 1'b1;
+      end
+    end
+  end
+
+  always_comb begin
+    det = '0;
     for (int i = 0; i < 3; i++) edge_a_d[i] = '0;
     for (int i = 0; i < 3; i++) edge_b_d[i] = '0;
     for (int i = 0; i < 3; i++) edge_c_d[i] = '0;
@@ -278,26 +346,15 @@ module setup_engine #(
     box_y_hi_d = '0;
     ref_x_d = '0;
     ref_y_d = '0;
-    max_exponent = '0;
-    depth_range_d = '0;
-    for (int i = 0; i < 3; i++) q_shift[i] = '0;
-    for (int i = 0; i < 3; i++) q_wide[i] = '0;
-    for (int i = 0; i < 3; i++) q_vertex_d[i] = '0;
     for (int i = 0; i < 3; i++) u_attr_d[i] = '0;
     for (int i = 0; i < 3; i++) v_attr_d[i] = '0;
     if (stage_a) begin
-      dx1 = DiffBits'(x_q[1]) - DiffBits'(x_q[0]);
-      dy1 = DiffBits'(y_q[1]) - DiffBits'(y_q[0]);
-      dx2 = DiffBits'(x_q[2]) - DiffBits'(x_q[0]);
-      dy2 = DiffBits'(y_q[2]) - DiffBits'(y_q[0]);
-      det = DetBits'(dx1) * DetBits'(dy2) - DetBits'(dx2) * DetBits'(dy1);
+      det = DetBits'(products[AccBits*`CD_SETUP_DET +: AccBits]);  // dx1 dy2 - dx2 dy1
       for (int i = 0; i < 3; i++) begin
-        edge_dx[i] = DiffBits'(x_q[(i + 2) % 3]) - DiffBits'(x_q[(i + 1) % 3]);
-        edge_dy[i] = DiffBits'(y_q[(i + 2) % 3]) - DiffBits'(y_q[(i + 1) % 3]);
         edge_a_d[i] = det < 0 ? edge_dy[i] : -edge_dy[i];
         edge_b_d[i] = det < 0 ? -edge_dx[i] : edge_dx[i];
-        edge_c_d[i] = EdgeCBits'(edge_dy[i]) * EdgeCBits'(x_q[(i + 1) % 3]) -
-                      EdgeCBits'(edge_dx[i]) * EdgeCBits'(y_q[(i + 1) % 3]);
+        // dy x(i+1) - dx y(i+1)
+        edge_c_d[i] = EdgeCBits'(products[AccBits*(`CD_SETUP_EDGE_C0 + i) +: AccBits]);
         if (det < 0) edge_c_d[i] = -edge_c_d[i];
         edge_threshold_d[i] = !((edge_a_d[i] == 0 && edge_b_d[i] > 0) || edge_a_d[i] > 0);
       end
@@ -335,21 +392,10 @@ module setup_engine #(
       ref_y_d = (DiffBits'($signed({1'b0, box_y_lo_d})) <<< SubpixelBits) + DiffBits'(HalfPx) -
                 DiffBits'(y_q[0]);
 
-      // q_i = round(m_i 2^-(E - e_i + 24 - q_bits)); 0 once the shift passes 25.
-      max_exponent = qf_q[0][30:23];
-      for (int i = 1; i < 3; i++) if (qf_q[i][30:23] > max_exponent) max_exponent = qf_q[i][30:23];
-      depth_range_d = 1'b0;
       for (int i = 0; i < 3; i++) begin
-        q_shift[i] = $signed({2'b00, max_exponent - qf_q[i][30:23]}) + 10'sd24 - 10'(QBits);
-        q_wide[i] = {10'd0, 1'b1, qf_q[i][22:0]};
-        if (q_shift[i] <= 0) q_wide[i] = q_wide[i] << (-q_shift[i]);
-        else if (q_shift[i] > 10'sd25) q_wide[i] = '0;
-        else q_wide[i] = (q_wide[i] + (34'd1 << (q_shift[i] - 10'sd1))) >> q_shift[i];
-        q_vertex_d[i] = QVertexBits'(q_wide[i]);
-        if (q_vertex_d[i] == '0) depth_range_d = 1'b1;
         if (HasPlanes) begin
-          u_attr_d[i] = AttrUvBits'($signed({1'b0, q_vertex_d[i]})) * AttrUvBits'(u_q[i]);
-          v_attr_d[i] = AttrUvBits'($signed({1'b0, q_vertex_d[i]})) * AttrUvBits'(v_q[i]);
+          u_attr_d[i] = AttrUvBits'(products[AccBits*(`CD_SETUP_U_ATTR0 + i) +: AccBits]);  // q u
+          v_attr_d[i] = AttrUvBits'(products[AccBits*(`CD_SETUP_V_ATTR0 + i) +: AccBits]);  // q v
         end
       end
     end
@@ -413,6 +459,7 @@ module setup_engine #(
   logic [PeakBits-1:0]          peak_candidate [3];
   logic [PeakBits-1:0]          q_peak_d;
 
+  // Stage B's operands: differences of q, U and V, and |det|.
   always_comb begin
     det_abs = '0;
     dq1 = '0;
@@ -421,6 +468,20 @@ module setup_engine #(
     du2 = '0;
     dv1 = '0;
     dv2 = '0;
+    if (window_b) begin
+      det_abs = det_q < 0 ? -det_q : det_q;
+      dq1 = (AttrQBits+1)'($signed({1'b0, q_vertex_q[1]})) - (AttrQBits+1)'($signed({1'b0, q_vertex_q[0]}));
+      dq2 = (AttrQBits+1)'($signed({1'b0, q_vertex_q[2]})) - (AttrQBits+1)'($signed({1'b0, q_vertex_q[0]}));
+    end
+    if (window_b && HasPlanes) begin
+      du1 = (AttrUvBits+1)'(u_attr_q[1]) - (AttrUvBits+1)'(u_attr_q[0]);
+      du2 = (AttrUvBits+1)'(u_attr_q[2]) - (AttrUvBits+1)'(u_attr_q[0]);
+      dv1 = (AttrUvBits+1)'(v_attr_q[1]) - (AttrUvBits+1)'(v_attr_q[0]);
+      dv2 = (AttrUvBits+1)'(v_attr_q[2]) - (AttrUvBits+1)'(v_attr_q[0]);
+    end
+  end
+
+  always_comb begin
     q_coef_x_d = '0;
     q_coef_y_d = '0;
     u_coef_x_d = '0;
@@ -430,25 +491,18 @@ module setup_engine #(
     q_peak_d = '0;
     for (int i = 0; i < 3; i++) peak_candidate[i] = '0;
     if (stage_b) begin
-      det_abs = det_q < 0 ? -det_q : det_q;
-      dq1 = (AttrQBits+1)'($signed({1'b0, q_vertex_q[1]})) - (AttrQBits+1)'($signed({1'b0, q_vertex_q[0]}));
-      dq2 = (AttrQBits+1)'($signed({1'b0, q_vertex_q[2]})) - (AttrQBits+1)'($signed({1'b0, q_vertex_q[0]}));
-      q_coef_x_d = CoefQBits'(dq1) * CoefQBits'(dy2_q) - CoefQBits'(dq2) * CoefQBits'(dy1_q);
-      q_coef_y_d = CoefQBits'(dq2) * CoefQBits'(dx1_q) - CoefQBits'(dq1) * CoefQBits'(dx2_q);
+      q_coef_x_d = CoefQBits'(products[AccBits*`CD_SETUP_Q_COEF_X +: AccBits]);  // dq1 dy2 - dq2 dy1
+      q_coef_y_d = CoefQBits'(products[AccBits*`CD_SETUP_Q_COEF_Y +: AccBits]);  // dq2 dx1 - dq1 dx2
       if (det_q < 0) begin
         q_coef_x_d = -q_coef_x_d;
         q_coef_y_d = -q_coef_y_d;
       end
     end
     if (stage_b && HasPlanes) begin
-      du1 = (AttrUvBits+1)'(u_attr_q[1]) - (AttrUvBits+1)'(u_attr_q[0]);
-      du2 = (AttrUvBits+1)'(u_attr_q[2]) - (AttrUvBits+1)'(u_attr_q[0]);
-      dv1 = (AttrUvBits+1)'(v_attr_q[1]) - (AttrUvBits+1)'(v_attr_q[0]);
-      dv2 = (AttrUvBits+1)'(v_attr_q[2]) - (AttrUvBits+1)'(v_attr_q[0]);
-      u_coef_x_d = CoefUvBits'(du1) * CoefUvBits'(dy2_q) - CoefUvBits'(du2) * CoefUvBits'(dy1_q);
-      u_coef_y_d = CoefUvBits'(du2) * CoefUvBits'(dx1_q) - CoefUvBits'(du1) * CoefUvBits'(dx2_q);
-      v_coef_x_d = CoefUvBits'(dv1) * CoefUvBits'(dy2_q) - CoefUvBits'(dv2) * CoefUvBits'(dy1_q);
-      v_coef_y_d = CoefUvBits'(dv2) * CoefUvBits'(dx1_q) - CoefUvBits'(dv1) * CoefUvBits'(dx2_q);
+      u_coef_x_d = CoefUvBits'(products[AccBits*`CD_SETUP_U_COEF_X +: AccBits]);
+      u_coef_y_d = CoefUvBits'(products[AccBits*`CD_SETUP_U_COEF_Y +: AccBits]);
+      v_coef_x_d = CoefUvBits'(products[AccBits*`CD_SETUP_V_COEF_X +: AccBits]);
+      v_coef_y_d = CoefUvBits'(products[AccBits*`CD_SETUP_V_COEF_Y +: AccBits]);
       if (det_q < 0) begin
         u_coef_x_d = -u_coef_x_d;
         u_coef_y_d = -u_coef_y_d;
@@ -458,7 +512,7 @@ module setup_engine #(
       // The largest q |det| sets the shared shift.
       q_peak_d = '0;
       for (int i = 0; i < 3; i++) begin
-        peak_candidate[i] = PeakBits'(q_vertex_q[i]) * PeakBits'(det_abs);
+        peak_candidate[i] = PeakBits'(products[AccBits*(`CD_SETUP_PEAK0 + i) +: AccBits]);  // q |det|
         if (peak_candidate[i] > q_peak_d) q_peak_d = peak_candidate[i];
       end
     end
@@ -503,11 +557,27 @@ module setup_engine #(
   logic [BoundNumBits-1:0]          edge_n_high_abs [3];
   logic [PixelBits-1:0]             major_lo_c;
 
+  // Stage C's operands: the orientation, and each edge's coefficients along it.
+  always_comb begin
+    x_major_d = '0;
+    major_lo_c = '0;
+    for (int i = 0; i < 3; i++) edge_fixed[i] = '0;
+    for (int i = 0; i < 3; i++) edge_free[i] = '0;
+    if (window_c) begin
+      // Lines run along the axis in which q changes least.
+      x_major_d = (q_coef_x_q < 0 ? -q_coef_x_q : q_coef_x_q) <= (q_coef_y_q < 0 ? -q_coef_y_q : q_coef_y_q);
+      major_lo_c = x_major_d ? box_x_lo_q : box_y_lo_q;
+      for (int i = 0; i < 3; i++) begin
+        edge_fixed[i] = x_major_d ? edge_a_q[i] : edge_b_q[i];
+        edge_free[i] = x_major_d ? edge_b_q[i] : edge_a_q[i];
+      end
+    end
+  end
+
   always_comb begin
     q_ref_d = '0;
     u_ref_d = '0;
     v_ref_d = '0;
-    x_major_d = '0;
     peak_length = '0;
     shift_d = '0;
     q_major = '0;
@@ -515,32 +585,21 @@ module setup_engine #(
     g_numerator = '0;
     g_div_num = '0;
     g_div_den = '0;
-    major_lo_c = '0;
-    for (int i = 0; i < 3; i++) edge_fixed[i] = '0;
-    for (int i = 0; i < 3; i++) edge_free[i] = '0;
     for (int i = 0; i < 3; i++) edge_free_abs[i] = '0;
     for (int i = 0; i < 3; i++) edge_fixed_abs[i] = '0;
     for (int i = 0; i < 3; i++) edge_n[i] = '0;
     for (int i = 0; i < 3; i++) edge_n_high[i] = '0;
     for (int i = 0; i < 3; i++) edge_n_high_abs[i] = '0;
     if (stage_c && HasPlanes) begin
-      q_ref_d = ExactRefQBits'($signed({1'b0, q_vertex_q[0]})) * ExactRefQBits'(det_abs_q) +
-                ExactRefQBits'(q_coef_x_q) * ExactRefQBits'(ref_x_q) +
-                ExactRefQBits'(q_coef_y_q) * ExactRefQBits'(ref_y_q);
-      u_ref_d = ExactRefUvBits'(u_attr_q[0]) * ExactRefUvBits'(det_abs_q) +
-                ExactRefUvBits'(u_coef_x_q) * ExactRefUvBits'(ref_x_q) +
-                ExactRefUvBits'(u_coef_y_q) * ExactRefUvBits'(ref_y_q);
-      v_ref_d = ExactRefUvBits'(v_attr_q[0]) * ExactRefUvBits'(det_abs_q) +
-                ExactRefUvBits'(v_coef_x_q) * ExactRefUvBits'(ref_x_q) +
-                ExactRefUvBits'(v_coef_y_q) * ExactRefUvBits'(ref_y_q);
+      // A0 |det| + A_x ref_x + A_y ref_y
+      q_ref_d = ExactRefQBits'(products[AccBits*`CD_SETUP_Q_REF +: AccBits]);
+      u_ref_d = ExactRefUvBits'(products[AccBits*`CD_SETUP_U_REF +: AccBits]);
+      v_ref_d = ExactRefUvBits'(products[AccBits*`CD_SETUP_V_REF +: AccBits]);
       peak_length = '0;
       for (int i = 0; i < PeakBits; i++) if (q_peak_q[i]) peak_length = 8'(i + 1);
       shift_d = ShiftBits'($signed({1'b0, peak_length})) - ShiftBits'(PlaneBits);
     end
     if (stage_c) begin
-      // Lines run along the axis in which q changes least.
-      x_major_d = (q_coef_x_q < 0 ? -q_coef_x_q : q_coef_x_q) <= (q_coef_y_q < 0 ? -q_coef_y_q : q_coef_y_q);
-
       // g = round(-q_major 2^g_frac / q_minor) = floor((2 N' + D') / (2 D')) with
       // N' = -q_major sign(q_minor) 2^g_frac and D' = |q_minor|.
       q_major = x_major_d ? q_coef_x_q : q_coef_y_q;
@@ -552,14 +611,11 @@ module setup_engine #(
 
       // Edge i at the first column: N0 = E - threshold there (model/coverage.cpp
       // covered_span), divided by |free| 2^sp as (N0 >> sp) / |free|.
-      major_lo_c = x_major_d ? box_x_lo_q : box_y_lo_q;
       for (int i = 0; i < 3; i++) begin
-        edge_fixed[i] = x_major_d ? edge_a_q[i] : edge_b_q[i];
-        edge_free[i] = x_major_d ? edge_b_q[i] : edge_a_q[i];
         edge_free_abs[i] = FreeBits'(edge_free[i] < 0 ? -edge_free[i] : edge_free[i]);
         edge_fixed_abs[i] = FreeBits'(edge_fixed[i] < 0 ? -edge_fixed[i] : edge_fixed[i]);
-        edge_n[i] = EdgeNBits'(edge_fixed[i]) *
-                        ((EdgeNBits'($signed({1'b0, major_lo_c})) <<< SubpixelBits) + EdgeNBits'(HalfPx)) +
+        // fixed (major_lo 2^sp + half) + free half + c - threshold
+        edge_n[i] = EdgeNBits'(products[AccBits*(`CD_SETUP_EDGE_N0 + i) +: AccBits]) +
                     EdgeNBits'(edge_free[i]) * EdgeNBits'(HalfPx) + EdgeNBits'(edge_c_q[i]) -
                     EdgeNBits'($signed({1'b0, edge_threshold_q[i]}));
         edge_n_high[i] = BoundNumBits'(edge_n[i] >>> SubpixelBits);
@@ -674,9 +730,7 @@ module setup_engine #(
     u_axis_minor = '0;
     v_axis_major = '0;
     v_axis_minor = '0;
-    step_u_exact = '0;
-    step_v_exact = '0;
-    if (stage_d) begin
+    if (window_d) begin
       g_d = GBits'($signed({1'b0, g_quotient}));
       if (g_negative_q) g_d = -g_d - GBits'(g_remainder != '0);
       if (g_zero_q) g_d = '0;
@@ -689,8 +743,16 @@ module setup_engine #(
       u_axis_minor = (x_major_q ? AxisUvBits'(u_coef_y_q) : AxisUvBits'(u_coef_x_q)) <<< SubpixelBits;
       v_axis_major = (x_major_q ? AxisUvBits'(v_coef_x_q) : AxisUvBits'(v_coef_y_q)) <<< SubpixelBits;
       v_axis_minor = (x_major_q ? AxisUvBits'(v_coef_y_q) : AxisUvBits'(v_coef_x_q)) <<< SubpixelBits;
-      step_u_exact = (StepNumBits'(u_axis_major) <<< GFrac) + StepNumBits'(g_d) * StepNumBits'(u_axis_minor);
-      step_v_exact = (StepNumBits'(v_axis_major) <<< GFrac) + StepNumBits'(g_d) * StepNumBits'(v_axis_minor);
+    end
+  end
+
+  // U_major 2^g_frac + g U_minor
+  always_comb begin
+    step_u_exact = '0;
+    step_v_exact = '0;
+    if (stage_d) begin
+      step_u_exact = (StepNumBits'(u_axis_major) <<< GFrac) + StepNumBits'(products[AccBits*`CD_SETUP_STEP_U +: AccBits]);
+      step_v_exact = (StepNumBits'(v_axis_major) <<< GFrac) + StepNumBits'(products[AccBits*`CD_SETUP_STEP_V +: AccBits]);
     end
   end
 
@@ -775,22 +837,46 @@ module setup_engine #(
   // - g (major - major_ref)) at each vertex; pixel lines lie within 1/2 of it.
   logic [PixelBits-1:0]            major_lo_d, minor_lo_d, minor_hi_d;
   logic [PixelBits:0]              major_count_d;
-  logic signed [DiffBits:0]        vertex_major, vertex_minor;
+  logic signed [DiffBits:0]        vertex_major [3];
+  logic signed [DiffBits:0]        vertex_minor [3];
+  logic signed [PixelBits+1:0]     columns_less_one;
   logic signed [KappaBits-1:0]     kappa, kappa_lo, kappa_hi;
   logic signed [LineRangeBits-1:0] line_lo, line_hi, round_last, minor_extent;
   logic signed [GBits+PixelBits+3:0] round_product;
   logic                            no_lines_d;
   localparam logic signed [KappaBits-1:0] KappaScale = KappaBits'(1) <<< (SubpixelBits + GFrac);
 
+  // Stage D's operands: the walk's axes, each vertex's offsets along them,
+  // and the box's last column.
   always_comb begin
     major_lo_d = '0;
     major_count_d = '0;
     minor_lo_d = '0;
     minor_hi_d = '0;
+    for (int i = 0; i < 3; i++) vertex_major[i] = '0;
+    for (int i = 0; i < 3; i++) vertex_minor[i] = '0;
+    columns_less_one = '0;
+    if (window_d) begin
+      major_lo_d = x_major_q ? box_x_lo_q : box_y_lo_q;
+      major_count_d = x_major_q ? (PixelBits+1)'(box_x_hi_q) - (PixelBits+1)'(box_x_lo_q) + 1
+                                : (PixelBits+1)'(box_y_hi_q) - (PixelBits+1)'(box_y_lo_q) + 1;
+      minor_lo_d = x_major_q ? box_y_lo_q : box_x_lo_q;
+      minor_hi_d = x_major_q ? box_y_hi_q : box_x_hi_q;
+    end
+    if (window_d && HasLines) begin
+      for (int i = 0; i < 3; i++) begin
+        vertex_major[i] = (x_major_q ? (DiffBits+1)'(x_q[i]) - (DiffBits+1)'(x_q[0]) - (DiffBits+1)'(ref_x_q)
+                                  : (DiffBits+1)'(y_q[i]) - (DiffBits+1)'(y_q[0]) - (DiffBits+1)'(ref_y_q));
+        vertex_minor[i] = (x_major_q ? (DiffBits+1)'(y_q[i]) - (DiffBits+1)'(y_q[0]) - (DiffBits+1)'(ref_y_q)
+                                  : (DiffBits+1)'(x_q[i]) - (DiffBits+1)'(x_q[0]) - (DiffBits+1)'(ref_x_q));
+      end
+      columns_less_one = (PixelBits+2)'($signed({1'b0, major_count_d})) - (PixelBits+2)'(1);
+    end
+  end
+
+  always_comb begin
     kappa_lo = '0;
     kappa_hi = '0;
-    vertex_major = '0;
-    vertex_minor = '0;
     kappa = '0;
     line_lo = '0;
     line_hi = '0;
@@ -798,20 +884,10 @@ module setup_engine #(
     round_last = '0;
     minor_extent = '0;
     no_lines_d = '0;
-    if (stage_d) begin
-      major_lo_d = x_major_q ? box_x_lo_q : box_y_lo_q;
-      major_count_d = x_major_q ? (PixelBits+1)'(box_x_hi_q) - (PixelBits+1)'(box_x_lo_q) + 1
-                                : (PixelBits+1)'(box_y_hi_q) - (PixelBits+1)'(box_y_lo_q) + 1;
-      minor_lo_d = x_major_q ? box_y_lo_q : box_x_lo_q;
-      minor_hi_d = x_major_q ? box_y_hi_q : box_x_hi_q;
-    end
     if (stage_d && HasLines) begin
       for (int i = 0; i < 3; i++) begin
-        vertex_major = (x_major_q ? (DiffBits+1)'(x_q[i]) - (DiffBits+1)'(x_q[0]) - (DiffBits+1)'(ref_x_q)
-                                  : (DiffBits+1)'(y_q[i]) - (DiffBits+1)'(y_q[0]) - (DiffBits+1)'(ref_y_q));
-        vertex_minor = (x_major_q ? (DiffBits+1)'(y_q[i]) - (DiffBits+1)'(y_q[0]) - (DiffBits+1)'(ref_y_q)
-                                  : (DiffBits+1)'(x_q[i]) - (DiffBits+1)'(x_q[0]) - (DiffBits+1)'(ref_x_q));
-        kappa = ((KappaBits'(vertex_minor) <<< GFrac) - KappaBits'(g_d) * KappaBits'(vertex_major))
+        kappa = ((KappaBits'(vertex_minor[i]) <<< GFrac) -
+                 KappaBits'(products[AccBits*(`CD_SETUP_KAPPA0 + i) +: AccBits]))  // g major offset
                 <<< density_log2_q;
         if (i == 0 || kappa < kappa_lo) kappa_lo = kappa;
         if (i == 0 || kappa > kappa_hi) kappa_hi = kappa;
@@ -820,8 +896,7 @@ module setup_engine #(
       line_lo = LineRangeBits'(-((KappaScale - (kappa_lo <<< 1)) >>> (SubpixelBits + GFrac + 1)));
       line_hi = LineRangeBits'(-((-(kappa_hi <<< 1) - KappaScale) >>> (SubpixelBits + GFrac + 1))) - 1;
       // The box bounds them too: line = m minor_offset - round(m g o).
-      round_product = ((GBits+PixelBits+4)'(g_d) *
-                       ((GBits+PixelBits+4)'($signed({1'b0, major_count_d})) - (GBits+PixelBits+4)'(1)))
+      round_product = (GBits+PixelBits+4)'(products[AccBits*`CD_SETUP_ROUND_LAST +: AccBits])  // g (columns - 1)
                       <<< density_log2_q;
       round_last = LineRangeBits'((round_product + (GBits+PixelBits+4)'(1 <<< (GFrac - 1))) >>> GFrac);
       minor_extent = (LineRangeBits'($signed({1'b0, minor_hi_d})) - LineRangeBits'($signed({1'b0, minor_lo_d})))
@@ -984,12 +1059,117 @@ module setup_engine #(
     assign edge_slope_rem_o[EdgeStepBits*i +: EdgeStepBits] = edge_slope_rem_q[i];
   end
 
+  // ---------------------------------------------------------------- operands
+  // Each term's operands (model/setup_terms.def), sign-extended. Outside its
+  // stage's window a stage's signals are zero, and so are its products. Stage
+  // E's (the fill's first line) are registers that hold until the next
+  // triangle's stage D, since the fill may load them after setup.
+  logic signed [LineBits-1:0] first_line;
+  assign first_line = line_lo_q - LineBits'($signed({1'b0, guard_q}));
+
+  always_comb begin
+    term_a = '0;
+    term_b = '0;
+    // stage A
+    term_a[OperandABits*(`CD_SETUP_TERM_DET + 0) +: OperandABits] = OperandABits'(dx1);
+    term_b[OperandBBits*(`CD_SETUP_TERM_DET + 0) +: OperandBBits] = OperandBBits'(dy2);
+    term_a[OperandABits*(`CD_SETUP_TERM_DET + 1) +: OperandABits] = OperandABits'(dx2);
+    term_b[OperandBBits*(`CD_SETUP_TERM_DET + 1) +: OperandBBits] = OperandBBits'(dy1);
+    for (int i = 0; i < 3; i++) begin
+      term_a[OperandABits*(`CD_SETUP_TERM_EDGE_C0 + 2*i + 0) +: OperandABits] = OperandABits'(edge_dy[i]);
+      term_b[OperandBBits*(`CD_SETUP_TERM_EDGE_C0 + 2*i + 0) +: OperandBBits] = OperandBBits'(x_q[(i + 1) % 3]);
+      term_a[OperandABits*(`CD_SETUP_TERM_EDGE_C0 + 2*i + 1) +: OperandABits] = OperandABits'(edge_dx[i]);
+      term_b[OperandBBits*(`CD_SETUP_TERM_EDGE_C0 + 2*i + 1) +: OperandBBits] = OperandBBits'(y_q[(i + 1) % 3]);
+      term_a[OperandABits*(`CD_SETUP_TERM_U_ATTR0 + i) +: OperandABits] = OperandABits'($signed({1'b0, q_vertex_d[i]}));
+      term_b[OperandBBits*(`CD_SETUP_TERM_U_ATTR0 + i) +: OperandBBits] = OperandBBits'(u_q[i]);
+      term_a[OperandABits*(`CD_SETUP_TERM_V_ATTR0 + i) +: OperandABits] = OperandABits'($signed({1'b0, q_vertex_d[i]}));
+      term_b[OperandBBits*(`CD_SETUP_TERM_V_ATTR0 + i) +: OperandBBits] = OperandBBits'(v_q[i]);
+    end
+    // stage B
+    term_a[OperandABits*(`CD_SETUP_TERM_Q_COEF_X + 0) +: OperandABits] = OperandABits'(dq1);
+    term_b[OperandBBits*(`CD_SETUP_TERM_Q_COEF_X + 0) +: OperandBBits] = OperandBBits'(dy2_q);
+    term_a[OperandABits*(`CD_SETUP_TERM_Q_COEF_X + 1) +: OperandABits] = OperandABits'(dq2);
+    term_b[OperandBBits*(`CD_SETUP_TERM_Q_COEF_X + 1) +: OperandBBits] = OperandBBits'(dy1_q);
+    term_a[OperandABits*(`CD_SETUP_TERM_Q_COEF_Y + 0) +: OperandABits] = OperandABits'(dq2);
+    term_b[OperandBBits*(`CD_SETUP_TERM_Q_COEF_Y + 0) +: OperandBBits] = OperandBBits'(dx1_q);
+    term_a[OperandABits*(`CD_SETUP_TERM_Q_COEF_Y + 1) +: OperandABits] = OperandABits'(dq1);
+    term_b[OperandBBits*(`CD_SETUP_TERM_Q_COEF_Y + 1) +: OperandBBits] = OperandBBits'(dx2_q);
+    term_a[OperandABits*(`CD_SETUP_TERM_U_COEF_X + 0) +: OperandABits] = OperandABits'(du1);
+    term_b[OperandBBits*(`CD_SETUP_TERM_U_COEF_X + 0) +: OperandBBits] = OperandBBits'(dy2_q);
+    term_a[OperandABits*(`CD_SETUP_TERM_U_COEF_X + 1) +: OperandABits] = OperandABits'(du2);
+    term_b[OperandBBits*(`CD_SETUP_TERM_U_COEF_X + 1) +: OperandBBits] = OperandBBits'(dy1_q);
+    term_a[OperandABits*(`CD_SETUP_TERM_U_COEF_Y + 0) +: OperandABits] = OperandABits'(du2);
+    term_b[OperandBBits*(`CD_SETUP_TERM_U_COEF_Y + 0) +: OperandBBits] = OperandBBits'(dx1_q);
+    term_a[OperandABits*(`CD_SETUP_TERM_U_COEF_Y + 1) +: OperandABits] = OperandABits'(du1);
+    term_b[OperandBBits*(`CD_SETUP_TERM_U_COEF_Y + 1) +: OperandBBits] = OperandBBits'(dx2_q);
+    term_a[OperandABits*(`CD_SETUP_TERM_V_COEF_X + 0) +: OperandABits] = OperandABits'(dv1);
+    term_b[OperandBBits*(`CD_SETUP_TERM_V_COEF_X + 0) +: OperandBBits] = OperandBBits'(dy2_q);
+    term_a[OperandABits*(`CD_SETUP_TERM_V_COEF_X + 1) +: OperandABits] = OperandABits'(dv2);
+    term_b[OperandBBits*(`CD_SETUP_TERM_V_COEF_X + 1) +: OperandBBits] = OperandBBits'(dy1_q);
+    term_a[OperandABits*(`CD_SETUP_TERM_V_COEF_Y + 0) +: OperandABits] = OperandABits'(dv2);
+    term_b[OperandBBits*(`CD_SETUP_TERM_V_COEF_Y + 0) +: OperandBBits] = OperandBBits'(dx1_q);
+    term_a[OperandABits*(`CD_SETUP_TERM_V_COEF_Y + 1) +: OperandABits] = OperandABits'(dv1);
+    term_b[OperandBBits*(`CD_SETUP_TERM_V_COEF_Y + 1) +: OperandBBits] = OperandBBits'(dx2_q);
+    for (int i = 0; i < 3; i++) begin
+      if (window_b && HasPlanes) begin
+        term_a[OperandABits*(`CD_SETUP_TERM_PEAK0 + i) +: OperandABits] = OperandABits'($signed({1'b0, q_vertex_q[i]}));
+        term_b[OperandBBits*(`CD_SETUP_TERM_PEAK0 + i) +: OperandBBits] = OperandBBits'(det_abs);
+      end
+    end
+    // stage C
+    if (window_c && HasPlanes) begin
+      term_a[OperandABits*(`CD_SETUP_TERM_Q_REF + 0) +: OperandABits] = OperandABits'($signed({1'b0, q_vertex_q[0]}));
+      term_b[OperandBBits*(`CD_SETUP_TERM_Q_REF + 0) +: OperandBBits] = OperandBBits'(det_abs_q);
+      term_a[OperandABits*(`CD_SETUP_TERM_Q_REF + 1) +: OperandABits] = OperandABits'(q_coef_x_q);
+      term_b[OperandBBits*(`CD_SETUP_TERM_Q_REF + 1) +: OperandBBits] = OperandBBits'(ref_x_q);
+      term_a[OperandABits*(`CD_SETUP_TERM_Q_REF + 2) +: OperandABits] = OperandABits'(q_coef_y_q);
+      term_b[OperandBBits*(`CD_SETUP_TERM_Q_REF + 2) +: OperandBBits] = OperandBBits'(ref_y_q);
+      term_a[OperandABits*(`CD_SETUP_TERM_U_REF + 0) +: OperandABits] = OperandABits'(u_attr_q[0]);
+      term_b[OperandBBits*(`CD_SETUP_TERM_U_REF + 0) +: OperandBBits] = OperandBBits'(det_abs_q);
+      term_a[OperandABits*(`CD_SETUP_TERM_U_REF + 1) +: OperandABits] = OperandABits'(u_coef_x_q);
+      term_b[OperandBBits*(`CD_SETUP_TERM_U_REF + 1) +: OperandBBits] = OperandBBits'(ref_x_q);
+      term_a[OperandABits*(`CD_SETUP_TERM_U_REF + 2) +: OperandABits] = OperandABits'(u_coef_y_q);
+      term_b[OperandBBits*(`CD_SETUP_TERM_U_REF + 2) +: OperandBBits] = OperandBBits'(ref_y_q);
+      term_a[OperandABits*(`CD_SETUP_TERM_V_REF + 0) +: OperandABits] = OperandABits'(v_attr_q[0]);
+      term_b[OperandBBits*(`CD_SETUP_TERM_V_REF + 0) +: OperandBBits] = OperandBBits'(det_abs_q);
+      term_a[OperandABits*(`CD_SETUP_TERM_V_REF + 1) +: OperandABits] = OperandABits'(v_coef_x_q);
+      term_b[OperandBBits*(`CD_SETUP_TERM_V_REF + 1) +: OperandBBits] = OperandBBits'(ref_x_q);
+      term_a[OperandABits*(`CD_SETUP_TERM_V_REF + 2) +: OperandABits] = OperandABits'(v_coef_y_q);
+      term_b[OperandBBits*(`CD_SETUP_TERM_V_REF + 2) +: OperandBBits] = OperandBBits'(ref_y_q);
+    end
+    for (int i = 0; i < 3; i++) begin
+      term_a[OperandABits*(`CD_SETUP_TERM_EDGE_N0 + i) +: OperandABits] = OperandABits'(edge_fixed[i]);
+      if (window_c)
+        term_b[OperandBBits*(`CD_SETUP_TERM_EDGE_N0 + i) +: OperandBBits] =
+            (OperandBBits'($signed({1'b0, major_lo_c})) <<< SubpixelBits) + OperandBBits'(HalfPx);
+    end
+    // stage D
+    term_a[OperandABits*`CD_SETUP_TERM_STEP_U +: OperandABits] = OperandABits'(u_axis_minor);
+    term_b[OperandBBits*`CD_SETUP_TERM_STEP_U +: OperandBBits] = OperandBBits'(g_d);
+    term_a[OperandABits*`CD_SETUP_TERM_STEP_V +: OperandABits] = OperandABits'(v_axis_minor);
+    term_b[OperandBBits*`CD_SETUP_TERM_STEP_V +: OperandBBits] = OperandBBits'(g_d);
+    for (int i = 0; i < 3; i++) begin
+      term_a[OperandABits*(`CD_SETUP_TERM_KAPPA0 + i) +: OperandABits] = OperandABits'(vertex_major[i]);
+      term_b[OperandBBits*(`CD_SETUP_TERM_KAPPA0 + i) +: OperandBBits] = OperandBBits'(g_d);
+    end
+    term_a[OperandABits*`CD_SETUP_TERM_ROUND_LAST +: OperandABits] = OperandABits'(columns_less_one);
+    term_b[OperandBBits*`CD_SETUP_TERM_ROUND_LAST +: OperandBBits] = OperandBBits'(g_d);
+    // stage E
+    if (HasLines) begin
+      term_a[OperandABits*`CD_SETUP_TERM_Q_LINE +: OperandABits] = OperandABits'(q_per_line_q);
+      term_b[OperandBBits*`CD_SETUP_TERM_Q_LINE +: OperandBBits] = OperandBBits'(first_line);
+      term_a[OperandABits*`CD_SETUP_TERM_U_LINE +: OperandABits] = OperandABits'(u_per_line_q);
+      term_b[OperandBBits*`CD_SETUP_TERM_U_LINE +: OperandBBits] = OperandBBits'(first_line);
+      term_a[OperandABits*`CD_SETUP_TERM_V_LINE +: OperandABits] = OperandABits'(v_per_line_q);
+      term_b[OperandBBits*`CD_SETUP_TERM_V_LINE +: OperandBBits] = OperandBBits'(first_line);
+    end
+  end
+
   // ---------------------------------------------------------------- stage E and fill
   if (HasLines) begin : gen_fill
     // q, U, V on the line being issued: loaded with the first line of the first
     // band (line_lo - guard), stepped by one line per issue; after a band's last
     // line it steps back 2 guard lines to the next band's first.
-    logic signed [LineBits-1:0]      first_line;
     logic signed [FillQBits-1:0]     q_line_d, q_line_q;
     logic signed [FillUvBits-1:0]    u_line_d, u_line_q, v_line_d, v_line_q;
     logic                            load;
@@ -1026,14 +1206,14 @@ module setup_engine #(
     end
 
     always_comb begin
-      first_line = line_lo_q - LineBits'($signed({1'b0, guard_q}));
       q_line_d = q_line_q;
       u_line_d = u_line_q;
       v_line_d = v_line_q;
       if (load) begin
-        q_line_d = FillQBits'(q_at_ref_q) + FillQBits'(first_line) * FillQBits'(q_per_line_q);
-        u_line_d = FillUvBits'(u_at_ref_q) + FillUvBits'(first_line) * FillUvBits'(u_per_line_q);
-        v_line_d = FillUvBits'(v_at_ref_q) + FillUvBits'(first_line) * FillUvBits'(v_per_line_q);
+        // at the reference + first line x per line
+        q_line_d = FillQBits'(q_at_ref_q) + FillQBits'(products[AccBits*`CD_SETUP_Q_LINE +: AccBits]);
+        u_line_d = FillUvBits'(u_at_ref_q) + FillUvBits'(products[AccBits*`CD_SETUP_U_LINE +: AccBits]);
+        v_line_d = FillUvBits'(v_at_ref_q) + FillUvBits'(products[AccBits*`CD_SETUP_V_LINE +: AccBits]);
       end else if (fill_valid_i) begin
         if (fill_last_i && fill_guard) begin
           q_line_d = q_line_q - FillQBits'(fill_q_per_line);

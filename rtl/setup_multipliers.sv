@@ -1,0 +1,162 @@
+// The setup engine's multiplies (model/setup_terms.def): each result a sum of
+// signed products, its terms listed in the generated cd_widths.svh with the
+// schedule that model/setup_schedule.cpp derives.
+//
+// With CD_SETUP_MULTIPLIERS = 0 every product has a multiplier of its own and
+// result_o is combinational: the sums are ready in the cycle that reads them
+// (stage A to E of setup_engine.sv), as in a fully parallel engine.
+//
+// With M >= 1 the products share M unsigned L x L multipliers (L =
+// CD_SETUP_MUL_BITS). Term t runs on multiplier CD_SETUP_TERM_MULTIPLIER[t]
+// from setup cycle CD_SETUP_TERM_START[t] for LimbsA x LimbsB cycles: each
+// cycle multiplies an L-bit piece of |a| by one of |b| and adds it, shifted
+// into place and signed, to the multiplier's accumulator. A result's terms
+// run back to back on one multiplier; after its last piece the accumulator
+// is registered as the result, which holds until the term runs again.
+// Operands must hold still from a term's first cycle to its last. A held
+// unit (hold_i) repeats the cycle: the accumulators keep their value.
+`include "cd_widths.svh"
+`default_nettype none
+
+module setup_multipliers #(
+  localparam int TermCount   = `CD_SETUP_TERM_COUNT,
+  localparam int ResultCount = `CD_SETUP_RESULT_COUNT,
+  localparam int ABits       = `CD_SETUP_OPERAND_A_BITS,
+  localparam int BBits       = `CD_SETUP_OPERAND_B_BITS,
+  localparam int AccBits     = `CD_SETUP_ACC_BITS,
+  localparam int CountBits   = `CD_SETUP_COUNT_BITS
+) (
+  input  logic                           clk_i,
+  input  logic                           hold_i,
+  input  logic                           setup_i,
+  input  logic [CountBits-1:0]           stage_count_i,
+  // Term t's operands, sign-extended, in bits t*ABits +: ABits and t*BBits +: BBits.
+  input  logic [TermCount*ABits-1:0]     a_i,
+  input  logic [TermCount*BBits-1:0]     b_i,
+  // Result r in bits r*AccBits +: AccBits; its low CD_SETUP_RESULT_BITS[r] bits hold it.
+  output logic [ResultCount*AccBits-1:0] result_o
+);
+
+  localparam int Multipliers = `CD_SETUP_MULTIPLIERS;
+  localparam logic [16*TermCount-1:0] TermStart      = `CD_SETUP_TERM_START;
+  localparam logic [8*TermCount-1:0]  TermMultiplier = `CD_SETUP_TERM_MULTIPLIER;
+  localparam logic [8*TermCount-1:0]  TermLimbsA     = `CD_SETUP_TERM_LIMBS_A;
+  localparam logic [8*TermCount-1:0]  TermLimbsB     = `CD_SETUP_TERM_LIMBS_B;
+  localparam logic [TermCount-1:0]    TermNegate     = `CD_SETUP_TERM_NEGATE;
+  localparam logic [8*TermCount-1:0]  TermResult     = `CD_SETUP_TERM_RESULT;
+  localparam logic [TermCount-1:0]    TermFirst      = `CD_SETUP_TERM_FIRST;
+  localparam logic [TermCount-1:0]    TermLast       = `CD_SETUP_TERM_LAST;
+  localparam logic [8*ResultCount-1:0] ResultBits    = `CD_SETUP_RESULT_BITS;
+
+  if (Multipliers == 0) begin : gen_parallel
+    // One multiplier per product, each as wide as its result.
+    logic [TermCount*AccBits-1:0] product;
+    for (genvar t = 0; t < TermCount; t++) begin : gen_product
+      localparam int Bits = int'(ResultBits[8*int'(TermResult[8*t +: 8]) +: 8]);
+      logic signed [Bits-1:0] value;
+      assign value = Bits'($signed(a_i[ABits*t +: ABits])) * Bits'($signed(b_i[BBits*t +: BBits]));
+      assign product[AccBits*t +: AccBits] = TermNegate[t] ? -AccBits'(value) : AccBits'(value);
+    end
+    always_comb begin
+      result_o = '0;
+      for (int t = 0; t < TermCount; t++)
+        result_o[AccBits*int'(TermResult[8*t +: 8]) +: AccBits] =
+            result_o[AccBits*int'(TermResult[8*t +: 8]) +: AccBits] + product[AccBits*t +: AccBits];
+    end
+    logic unused_shared;
+    assign unused_shared = ^{clk_i, hold_i, setup_i, stage_count_i};
+  end else begin : gen_shared
+    localparam int L = `CD_SETUP_MUL_BITS;
+    localparam int PieceBits = 4;  // piece index: an operand has at most 16 pieces
+    localparam int AccWide = AccBits > 2 * L ? AccBits : 2 * L;
+
+    // Per term: in one of its cycles, and which pieces of |a| and |b| it multiplies.
+    logic [TermCount-1:0]           term_active, term_first, term_last_piece;
+    logic [TermCount*PieceBits-1:0] term_piece_a, term_piece_b;
+    for (genvar t = 0; t < TermCount; t++) begin : gen_term
+      localparam int Start  = int'(TermStart[16*t +: 16]);
+      localparam int LimbsB = int'(TermLimbsB[8*t +: 8]);
+      localparam int Cycles = int'(TermLimbsA[8*t +: 8]) * LimbsB;
+      always_comb begin
+        term_active[t] = 1'b0;
+        term_first[t] = 1'b0;
+        term_last_piece[t] = 1'b0;
+        term_piece_a[PieceBits*t +: PieceBits] = '0;
+        term_piece_b[PieceBits*t +: PieceBits] = '0;
+        for (int k = 0; k < Cycles; k++) begin
+          if (setup_i && stage_count_i == CountBits'(Start + k)) begin
+            term_active[t] = 1'b1;
+            term_first[t] = k == 0;
+            term_last_piece[t] = k == Cycles - 1;
+            term_piece_a[PieceBits*t +: PieceBits] = PieceBits'(k / LimbsB);
+            term_piece_b[PieceBits*t +: PieceBits] = PieceBits'(k % LimbsB);
+          end
+        end
+      end
+    end
+
+    logic [Multipliers*AccBits-1:0] acc_next;
+    for (genvar m = 0; m < Multipliers; m++) begin : gen_multiplier
+      logic [ABits-1:0]     a, a_magnitude;
+      logic [BBits-1:0]     b, b_magnitude;
+      logic [PieceBits-1:0] piece_a, piece_b;
+      logic                 busy, first, negate;
+      logic [L-1:0]         a_piece, b_piece;
+      logic [2*L-1:0]       piece_product;
+      logic [AccWide-1:0]   shifted;
+      logic [AccBits-1:0]   contribution, acc_d, acc_q;
+
+      // The operands of the term this multiplier runs now (at most one).
+      always_comb begin
+        a = '0;
+        b = '0;
+        piece_a = '0;
+        piece_b = '0;
+        busy = 1'b0;
+        first = 1'b0;
+        negate = 1'b0;
+        for (int t = 0; t < TermCount; t++) begin
+          if (int'(TermMultiplier[8*t +: 8]) == m && term_active[t]) begin
+            a = a | a_i[ABits*t +: ABits];
+            b = b | b_i[BBits*t +: BBits];
+            piece_a = piece_a | term_piece_a[PieceBits*t +: PieceBits];
+            piece_b = piece_b | term_piece_b[PieceBits*t +: PieceBits];
+            busy = 1'b1;
+            // A result starts with the first piece of its first term.
+            first = first | (term_first[t] && TermFirst[t]);
+            negate = negate | TermNegate[t];
+          end
+        end
+      end
+
+      assign a_magnitude = a[ABits-1] ? -a : a;
+      assign b_magnitude = b[BBits-1] ? -b : b;
+      assign a_piece = L'(a_magnitude >> (L * int'(piece_a)));
+      assign b_piece = L'(b_magnitude >> (L * int'(piece_b)));
+      assign piece_product = (2 * L)'(a_piece) * (2 * L)'(b_piece);
+      assign shifted = AccWide'(piece_product) << (L * (int'(piece_a) + int'(piece_b)));
+      assign contribution = (a[ABits-1] ^ b[BBits-1] ^ negate) ? -AccBits'(shifted) : AccBits'(shifted);
+      assign acc_d = (first ? '0 : acc_q) + contribution;
+      assign acc_next[AccBits*m +: AccBits] = acc_d;
+
+      always_ff @(posedge clk_i) begin
+        if (busy && !hold_i) acc_q <= acc_d;
+      end
+    end
+
+    // A result is registered from its multiplier after its last piece.
+    logic [AccBits-1:0] result_q [ResultCount];
+    always_ff @(posedge clk_i) begin
+      for (int t = 0; t < TermCount; t++) begin
+        if (TermLast[t] && term_active[t] && term_last_piece[t] && !hold_i)
+          result_q[int'(TermResult[8*t +: 8])] <= acc_next[AccBits*int'(TermMultiplier[8*t +: 8]) +: AccBits];
+      end
+    end
+    for (genvar r = 0; r < ResultCount; r++) begin : gen_result
+      assign result_o[AccBits*r +: AccBits] = result_q[r];
+    end
+  end
+
+endmodule
+
+`default_nettype wire
