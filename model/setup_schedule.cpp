@@ -128,6 +128,11 @@ std::string setup_schedule_defines(const SetupSchedule& s) {
                        upper(s.results[r].name), r, upper(s.results[r].name));
   for (const SetupResult& r : s.results)
     out += fmt::format("`define CD_SETUP_TERM_{} {}\n", upper(r.name), r.first_term);
+  int pieces = 1;
+  for (const SetupTerm& t : s.terms) pieces = std::max({pieces, t.limbs_a, t.limbs_b});
+  int piece_bits = 1;
+  while ((1 << piece_bits) < pieces) ++piece_bits;
+  out += fmt::format("`define CD_SETUP_PIECE_BITS {}  // index of an operand's L-bit piece\n", piece_bits);
   out += "// Per term t, bits [t*W +: W]\n";
   out += fmt::format("`define CD_SETUP_TERM_START {}\n", packed(start, 16));
   out += fmt::format("`define CD_SETUP_TERM_MULTIPLIER {}\n", packed(multiplier, 8));

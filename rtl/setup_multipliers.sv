@@ -52,31 +52,31 @@ module setup_multipliers #(
     // One multiplier per product, each as wide as its result.
     logic [TermCount*AccBits-1:0] product;
     for (genvar t = 0; t < TermCount; t++) begin : gen_product
-      localparam int Bits = int'(ResultBits[8*int'(TermResult[8*t +: 8]) +: 8]);
+      localparam int Bits = 32'(ResultBits[8*TermResult[8*t +: 8] +: 8]);
       logic signed [Bits-1:0] value;
       assign value = Bits'($signed(a_i[ABits*t +: ABits])) * Bits'($signed(b_i[BBits*t +: BBits]));
-      assign product[AccBits*t +: AccBits] = TermNegate[t] ? -AccBits'(value) : AccBits'(value);
+      assign product[AccBits*t +: AccBits] = TermNegate[t] ? -(AccBits'(value)) : AccBits'(value);
     end
     always_comb begin
       result_o = '0;
       for (int t = 0; t < TermCount; t++)
-        result_o[AccBits*int'(TermResult[8*t +: 8]) +: AccBits] =
-            result_o[AccBits*int'(TermResult[8*t +: 8]) +: AccBits] + product[AccBits*t +: AccBits];
+        result_o[AccBits*TermResult[8*t +: 8] +: AccBits] =
+            result_o[AccBits*TermResult[8*t +: 8] +: AccBits] + product[AccBits*t +: AccBits];
     end
     logic unused_shared;
     assign unused_shared = ^{clk_i, hold_i, setup_i, stage_count_i};
   end else begin : gen_shared
     localparam int L = `CD_SETUP_MUL_BITS;
-    localparam int PieceBits = 4;  // piece index: an operand has at most 16 pieces
+    localparam int PieceBits = `CD_SETUP_PIECE_BITS;
     localparam int AccWide = AccBits > 2 * L ? AccBits : 2 * L;
 
     // Per term: in one of its cycles, and which pieces of |a| and |b| it multiplies.
     logic [TermCount-1:0]           term_active, term_first, term_last_piece;
     logic [TermCount*PieceBits-1:0] term_piece_a, term_piece_b;
     for (genvar t = 0; t < TermCount; t++) begin : gen_term
-      localparam int Start  = int'(TermStart[16*t +: 16]);
-      localparam int LimbsB = int'(TermLimbsB[8*t +: 8]);
-      localparam int Cycles = int'(TermLimbsA[8*t +: 8]) * LimbsB;
+      localparam int Start  = 32'(TermStart[16*t +: 16]);
+      localparam int LimbsB = 32'(TermLimbsB[8*t +: 8]);
+      localparam int Cycles = 32'(TermLimbsA[8*t +: 8]) * LimbsB;
       always_comb begin
         term_active[t] = 1'b0;
         term_first[t] = 1'b0;
@@ -116,7 +116,7 @@ module setup_multipliers #(
         first = 1'b0;
         negate = 1'b0;
         for (int t = 0; t < TermCount; t++) begin
-          if (int'(TermMultiplier[8*t +: 8]) == m && term_active[t]) begin
+          if (TermMultiplier[8*t +: 8] == m && term_active[t]) begin
             a = a | a_i[ABits*t +: ABits];
             b = b | b_i[BBits*t +: BBits];
             piece_a = piece_a | term_piece_a[PieceBits*t +: PieceBits];
@@ -131,11 +131,11 @@ module setup_multipliers #(
 
       assign a_magnitude = a[ABits-1] ? -a : a;
       assign b_magnitude = b[BBits-1] ? -b : b;
-      assign a_piece = L'(a_magnitude >> (L * int'(piece_a)));
-      assign b_piece = L'(b_magnitude >> (L * int'(piece_b)));
+      assign a_piece = L'(a_magnitude >> (L * piece_a));
+      assign b_piece = L'(b_magnitude >> (L * piece_b));
       assign piece_product = (2 * L)'(a_piece) * (2 * L)'(b_piece);
-      assign shifted = AccWide'(piece_product) << (L * (int'(piece_a) + int'(piece_b)));
-      assign contribution = (a[ABits-1] ^ b[BBits-1] ^ negate) ? -AccBits'(shifted) : AccBits'(shifted);
+      assign shifted = AccWide'(piece_product) << (L * (32'(piece_a) + 32'(piece_b)));
+      assign contribution = (a[ABits-1] ^ b[BBits-1] ^ negate) ? -(AccBits'(shifted)) : AccBits'(shifted);
       assign acc_d = (first ? '0 : acc_q) + contribution;
       assign acc_next[AccBits*m +: AccBits] = acc_d;
 
@@ -145,11 +145,12 @@ module setup_multipliers #(
     end
 
     // A result is registered from its multiplier after its last piece.
+    localparam int ResultIndexBits = $clog2(ResultCount);
     logic [AccBits-1:0] result_q [ResultCount];
     always_ff @(posedge clk_i) begin
       for (int t = 0; t < TermCount; t++) begin
         if (TermLast[t] && term_active[t] && term_last_piece[t] && !hold_i)
-          result_q[int'(TermResult[8*t +: 8])] <= acc_next[AccBits*int'(TermMultiplier[8*t +: 8]) +: AccBits];
+          result_q[ResultIndexBits'(TermResult[8*t +: 8])] <= acc_next[AccBits*TermMultiplier[8*t +: 8] +: AccBits];
       end
     end
     for (genvar r = 0; r < ResultCount; r++) begin : gen_result

@@ -22,8 +22,9 @@ run() { "$cdsim" regress --backpressure 0.3 --rtl-cache "$cache" --coverage "$wo
         echo "regress $*:"; grep -E "mismatches|^  (line|branch|toggle|user) " "$work/run.log"; }
 run --widths narrow --random $((300 * scale)) --seed 3 --design $fast
 run --widths narrow --scene hard:all --design mix
-# early_walk (a coverage build of its own): bands walked while they are filled.
-run --widths narrow --set early_walk=1 --random $((300 * scale)) --seed 7 \
+# early_walk (a coverage build of its own): bands walked while they are filled,
+# with the setup engine on one shared 8 x 8 multiplier.
+run --widths narrow --set early_walk=1 --set setup_multipliers=1 --set setup_mul_bits=8 --random $((300 * scale)) --seed 7 \
     --design cd-none,cd-linear,cd-dense2,cd-dense4,cd-dense2-linear,cd-persp
 runs=3
 if ((scale > 1)); then
