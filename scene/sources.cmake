@@ -15,6 +15,7 @@ set(CDSIM_SCENE_SOURCES
   ${CDSIM_SCENE_DIR}/loaders/file_io.cpp
   ${CDSIM_SCENE_DIR}/loaders/gltf.cpp
   ${CDSIM_SCENE_DIR}/loaders/image_size.cpp
+  ${CDSIM_SCENE_DIR}/loaders/json_structure.cpp
   ${CDSIM_SCENE_DIR}/loaders/mesh_builder.cpp
   ${CDSIM_SCENE_DIR}/loaders/obj.cpp
   ${CDSIM_SCENE_DIR}/loaders/pk3.cpp

@@ -26,6 +26,13 @@ inline constexpr int kMaxResolution = 8192;
 // Deepest glTF node hierarchy followed (a cyclic hierarchy is refused).
 inline constexpr int kMaxNodeDepth = 64;
 
+// Deepest nesting of arrays and objects in a JSON input (glTF, scene files),
+// checked before parsing (json_structure.hpp). Real files nest a dozen levels
+// (a glTF's extras and extensions included); the recursion that follows the
+// parse (tinygltf's conversion of extras, nlohmann's dump) overflows an 8 MiB
+// stack near 20,000 levels, and a sanitizer build far sooner.
+inline constexpr int kMaxJsonDepth = 512;
+
 // Largest magnitude of a mesh coordinate after every transform: the largest
 // float, the widest any of the formats stores a position in. A glTF node
 // transform that goes beyond it has overflowed, and the front end's products
