@@ -28,7 +28,11 @@ ClipVertex lerp(const ClipVertex& a, const ClipVertex& b, double t) {
 }
 
 // Sutherland-Hodgman against one plane; inside is distance >= 0. Attributes are
-// affine in clip space, so interpolating them there is exact.
+// affine in clip space, so interpolating them there is exact. The crossing is
+// always computed from the inside end of the edge: two triangles that share
+// an edge walk it in opposite directions, and the same operands in the same
+// order give them the same crossing to the last bit, so the clipped shared
+// edge stays shared (each pixel drawn once).
 template <typename Distance>
 std::vector<ClipVertex> clip(const std::vector<ClipVertex>& polygon, Distance distance) {
   std::vector<ClipVertex> out;
@@ -37,7 +41,8 @@ std::vector<ClipVertex> clip(const std::vector<ClipVertex>& polygon, Distance di
     const ClipVertex& b = polygon[(i + 1) % polygon.size()];
     const double da = distance(a.position), db = distance(b.position);
     if (da >= 0) out.push_back(a);
-    if ((da >= 0) != (db >= 0)) out.push_back(lerp(a, b, da / (da - db)));
+    if ((da >= 0) != (db >= 0))
+      out.push_back(da >= 0 ? lerp(a, b, da / (da - db)) : lerp(b, a, db / (db - da)));
   }
   return out;
 }
