@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "scene.hpp"
@@ -17,12 +18,16 @@ struct LoadedGltf {
   std::string summary;  // counts, for the scene description
 };
 
-// .gltf or .glb (told apart by the 'glTF' magic, not by the name).
-LoadedGltf load_gltf(const std::string& path, glm::ivec2 default_texture_size);
+// .gltf or .glb (told apart by the 'glTF' magic, not by the name). A
+// primitive without the TEXCOORD_n its material reads (TEXCOORD_0 without a
+// texture) is refused unless `missing_texcoord` gives the (s, t) to use.
+LoadedGltf load_gltf(const std::string& path, glm::ivec2 default_texture_size,
+                     const std::optional<glm::dvec2>& missing_texcoord = std::nullopt);
 
 // In memory: only data: URIs and .glb's binary chunk are available; a
 // reference to an external file is refused.
 LoadedGltf load_gltf_from_memory(const uint8_t* data, size_t size, const std::string& name,
-                                 glm::ivec2 default_texture_size);
+                                 glm::ivec2 default_texture_size,
+                                 const std::optional<glm::dvec2>& missing_texcoord = std::nullopt);
 
 }  // namespace cdsim
