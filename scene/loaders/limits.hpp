@@ -44,4 +44,20 @@ inline constexpr double kMaxMeshCoordinate = 3.4028234663852886e38;  // FLT_MAX
 // projection matrices lose every digit of a mesh of any real size.
 inline constexpr double kMaxCameraCoordinate = 1e12;
 
+// Smallest vertical field of view, in degrees. The front end clips in double
+// precision, and a clipped vertex carries a rounding error of about 2^-52 of
+// the distance, in half-viewports, of the edge's far end from the view axis:
+// tan(angle off axis) / tan(fov_y / 2). At 1e-6 degrees a vertex 45 degrees
+// off axis is 1.1e8 half-viewports away, an error of 1e-4 pixel at 8192
+// pixels, a fortieth of a subpixel; at 1e-10 degrees the error is a pixel, and
+// at 1e-16 degrees a screen-filling quad draws half the screen (docs/scenes.md,
+// "Camera range"). Any fov_y below 180 degrees keeps coverage exact.
+inline constexpr double kMinFovDegrees = 1e-6;
+
+// Smallest near plane. A triangle clipped at the near plane gets w = near,
+// and the unit's input needs 1/w to be a normal float (model/triangle.cpp):
+// 1/w breaks past the largest float below near = 2.9e-39; 1e-36 leaves the
+// clipping's rounding a factor of 1000.
+inline constexpr double kMinNearPlane = 1e-36;
+
 }  // namespace cdsim::limits

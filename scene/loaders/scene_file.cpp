@@ -4,12 +4,14 @@
 #include <fmt/ranges.h>
 
 #include <cmath>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <set>
 
 #include "bsp.hpp"
 #include "file_io.hpp"
 #include "gltf.hpp"
+#include "json_structure.hpp"
 #include "limits.hpp"
 #include "obj.hpp"
 #include "pk3.hpp"
@@ -106,18 +108,22 @@ std::string format_vec(const glm::dvec3& v) { return fmt::format("({}, {}, {})",
 
 SceneFile parse_scene_json(const std::string& text, const std::string& path) {
   json root;
+  const std::string_view body = without_utf8_bom(text);
+  check_json_depth(body, path);
   try {
-    const std::string_view body = without_utf8_bom(text);
     root = json::parse(body.begin(), body.end());
   } catch (const json::parse_error& e) {
     throw InputError(fmt::format("{}: not valid JSON at byte {}: {}", path, e.byte, e.what()));
   } catch (const json::exception& e) {
     throw InputError(fmt::format("{}: not valid JSON: {}", path, e.what()));
   }
+  // After the parse, so that a syntax error is reported as such first.
+  check_json_unique_keys(body, path);
   const JsonFields fields(path);
   if (!root.is_object())
     throw InputError(fmt::format("{}: expected a JSON object, found {}", path, json_type(root)));
-  fields.only_keys(root, "", {"mesh", "camera", "resolution", "texture_size", "spawn"});
+  fields.only_keys(root, "",
+                   {"mesh", "camera", "resolution", "texture_size", "spawn", "missing_texcoord"});
   SceneFile out;
   if (!root.contains("mesh")) fields.fail("mesh", "missing (the path of an OBJ, glTF or BSP file)");
   if (!root["mesh"].is_string())
@@ -157,6 +163,11 @@ SceneFile parse_scene_json(const std::string& text, const std::string& path) {
     out.resolution = fields.size(root["resolution"], "resolution", limits::kMaxResolution);
   if (root.contains("texture_size"))
     out.texture_size = fields.size(root["texture_size"], "texture_size", limits::kMaxTextureSize);
+  if (root.contains("missing_texcoord")) {
+    const std::vector<double> st =
+        fields.numbers(root["missing_texcoord"], "missing_texcoord", 2, kMaxMissingTexcoord);
+    out.missing_texcoord = glm::dvec2(st[0], st[1]);
+  }
   return out;
 }
 
@@ -173,7 +184,18 @@ void validate_camera(const Camera& c, const std::string& where) {
       fail(fmt::format("coordinate {} is outside +-{:g}", v, limits::kMaxCameraCoordinate));
   if (!(c.fov_y_degrees > 0 && c.fov_y_degrees < 180))
     fail(fmt::format("fov_y {} is outside (0, 180) degrees", c.fov_y_degrees));
+  if (c.fov_y_degrees < limits::kMinFovDegrees)
+    fail(fmt::format("fov_y {} is below {:g} degrees: the front end's clipping, in double "
+                     "precision, cannot keep coverage exact below it; use fov_y in [{:g}, 180) "
+                     "(docs/scenes.md, \"Camera range\")",
+                     c.fov_y_degrees, limits::kMinFovDegrees, limits::kMinFovDegrees));
   if (!(c.near_plane > 0)) fail(fmt::format("near plane {} is not positive", c.near_plane));
+  if (c.near_plane < limits::kMinNearPlane)
+    fail(fmt::format("near plane {} is below {:g}: a triangle clipped there would reach the unit "
+                     "with 1/w beyond the largest float; use near in [{:g}, {:g}] "
+                     "(docs/scenes.md, \"Camera range\")",
+                     c.near_plane, limits::kMinNearPlane, limits::kMinNearPlane,
+                     limits::kMaxCameraCoordinate));
   const glm::dvec3 forward = c.target - c.eye;
   const double length = glm::length(forward), up_length = glm::length(c.up);
   if (!(length > 0) || !std::isfinite(length)) fail("eye and target coincide (or are too far apart)");
@@ -285,18 +307,36 @@ Scene load_scene_file(const std::string& spec, const SceneOptions& options) {
     camera.reset();
   }
 
+  if (!scene_source.empty() && kind != MeshKind::kUnknown) {
+    // The loaders name only the mesh path; a scene file that names a missing
+    // mesh should say which scene and field, and where relative paths start.
+    const auto pk3 = split_pk3_spec(file.mesh);
+    try {
+      require_regular_file(pk3 ? pk3->first : file.mesh);
+    } catch (const InputError& e) {
+      std::string note;
+      std::error_code error;
+      if (std::filesystem::is_symlink(spec, error)) {
+        const std::filesystem::path target = std::filesystem::canonical(spec, error);
+        note = fmt::format(" (a relative mesh path is taken from the directory of {} as named, "
+                           "not from that of the file it links to{})",
+                           spec, error ? std::string() : ", " + target.string());
+      }
+      throw InputError(fmt::format("{}: field 'mesh': {}{}", spec, e.what(), note));
+    }
+  }
   Mesh mesh;
   std::string what;
   std::vector<BspSpawnPoint> spawns;
   switch (kind) {
     case MeshKind::kObj: {
-      LoadedObj obj = load_obj(file.mesh, texture);
+      LoadedObj obj = load_obj(file.mesh, texture, file.missing_texcoord);
       mesh = std::move(obj.mesh);
       what = fmt::format("OBJ {} ({})", file.mesh, obj.summary);
       break;
     }
     case MeshKind::kGltf: {
-      LoadedGltf gltf = load_gltf(file.mesh, texture);
+      LoadedGltf gltf = load_gltf(file.mesh, texture, file.missing_texcoord);
       mesh = std::move(gltf.mesh);
       what = fmt::format("glTF {} ({})", file.mesh, gltf.summary);
       break;

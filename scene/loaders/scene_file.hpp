@@ -24,7 +24,15 @@ struct SceneFile {
   std::optional<int> spawn;
   std::optional<glm::ivec2> resolution;
   std::optional<glm::ivec2> texture_size;
+  // The normalised (s, t) of every mesh corner without a texture coordinate;
+  // without it such a mesh is refused (docs/scenes.md).
+  std::optional<glm::dvec2> missing_texcoord;
 };
+
+// The largest |s| or |t| of missing_texcoord: whole periods beyond it change
+// nothing (the mesh builder shifts them away), and it keeps s times a texture
+// size far inside a double's integers.
+inline constexpr double kMaxMissingTexcoord = 1e6;
 
 // Throws InputError naming `path` and the field for anything missing, of the
 // wrong type, out of range or unknown.
