@@ -9,14 +9,19 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <random>
+#include <set>
 #include <sstream>
 
+#include "coverage.hpp"
 #include "evaluate.hpp"
 #include "loaders/bsp.hpp"
 #include "loaders/file_io.hpp"
 #include "loaders/gltf.hpp"
+#include "loaders/json_structure.hpp"
 #include "loaders/limits.hpp"
 #include "loaders/obj.hpp"
 #include "loaders/pk3.hpp"
@@ -222,10 +227,11 @@ TEST(Obj, MalformedFilesAreRefusedWithTheFaceNamed) {
     return [=] { load_obj_from_memory(text, "", "bad.obj", kDefault); };
   };
   EXPECT_INPUT_ERROR(load("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n"),
-                     {"bad.obj", "face 0", "refers to vertex 9", "has 3"});
+                     {"bad.obj:4: 'f' corner 3: '9' refers to vertex 9", "has 3"});
   EXPECT_INPUT_ERROR(load("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/5 3/1\n"),
                      {"bad.obj", "texture coordinate 5", "has 1"});
-  EXPECT_INPUT_ERROR(load("v 0 0 0\nv 1 0 0\nv 0 1 0\nf -1 -2 -7\n"), {"bad.obj", "refers to vertex"});
+  EXPECT_INPUT_ERROR(load("v 0 0 0\nv 1 0 0\nv 0 1 0\nf -1 -2 -7\n"),
+                     {"bad.obj:4: 'f' corner 3: '-7' refers to vertex -7, before the first"});
   EXPECT_INPUT_ERROR(load("v 0 0 1e999\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"), {"bad.obj:1", "'1e999' is out of range"});
   // Nothing to draw is not an error: an empty mesh.
   EXPECT_EQ(load_obj_from_memory("", "", "empty.obj", kDefault).mesh.triangles.size(), 0u);
@@ -241,7 +247,7 @@ TEST(Obj, InputsThatTinyobjloaderMishandlesAreStoppedFirst) {
   EXPECT_INPUT_ERROR([] { load_obj_from_memory("mtllib m.mtl\n", "newmtl a\nNs 1.5e-99999999\n", "m.obj", kDefault); },
                      {"m.mtl:2", "exponent of 8 digits"});
   const LoadedObj obj = load_obj_from_memory("vw 2 11111111111111111111111111111111111111 0.5\n"
-                                             "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nl 1 2\n",
+                                             "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/1\nl 1 2\n",
                                              "", "vw.obj", kDefault);
   EXPECT_EQ(obj.mesh.triangles.size(), 1u);
   EXPECT_NE(obj.summary.find("2 lines of unused directives skipped"), std::string::npos) << obj.summary;
@@ -249,7 +255,7 @@ TEST(Obj, InputsThatTinyobjloaderMishandlesAreStoppedFirst) {
 
 TEST(Obj, MissingMaterialLibraryFallsBackToTheDefaultSize) {
   const LoadedObj obj = load_obj_from_memory(
-      "mtllib nowhere.mtl\nusemtl x\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "", "m.obj", {32, 16});
+      "mtllib nowhere.mtl\nusemtl x\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/1\n", "", "m.obj", {32, 16});
   ASSERT_EQ(obj.mesh.triangles.size(), 1u);
   EXPECT_EQ(obj.mesh.texture_size[0], glm::ivec2(32, 16));
 }
@@ -751,10 +757,10 @@ TEST(Obj, EveryNumberOfVertexTexcoordNormalAndFaceLinesIsChecked) {
   EXPECT_INPUT_ERROR(load(tri + "f\n"), {"bad.obj:4: 'f' has no corners"});
   EXPECT_INPUT_ERROR(load(tri + std::string("f 1 2\0 3\n", 10)), {"bad.obj:4: 'f' corner 2: '2\\x00'"});
   // Valid forms, signs and trailing comments pass.
-  EXPECT_EQ(load_obj_from_memory(tri + "vt 0\nvt 1 0 0\nvn 0 0 1\nf 1/1/1 2//1 +3/-1 # comment\n", "", "ok.obj", kDefault)
+  EXPECT_EQ(load_obj_from_memory(tri + "vt 0\nvt 1 0 0\nvn 0 0 1\nf 1/1/1 2/2/1 +3/-1 # comment\n", "", "ok.obj", kDefault)
                 .mesh.triangles.size(),
             1u);
-  EXPECT_EQ(load_obj_from_memory("v 0 0 0 1 # w\nv 1 0 0 1 0.5 0.5 0.5\nv 0 1 0 1 1 1\nf -3 -2 -1\n", "", "ok.obj", kDefault)
+  EXPECT_EQ(load_obj_from_memory("v 0 0 0 1 # w\nv 1 0 0 1 0.5 0.5 0.5\nv 0 1 0 1 1 1\nvt 0 0\nf -3/-1 -2/-1 -1/-1\n", "", "ok.obj", kDefault)
                 .mesh.triangles.size(),
             1u);
 }
@@ -777,7 +783,7 @@ TEST(Obj, ByteOrderMarksOfObjAndMtlChangeNothing) {
     EXPECT_EQ(marked.mesh.vertices[i].position, plain.mesh.vertices[i].position) << i;
   EXPECT_EQ(marked.summary, plain.summary);
   // A mark left before a first 'v' would drop that vertex.
-  EXPECT_EQ(load_obj_from_memory(kBom + "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "", "m.obj", kDefault)
+  EXPECT_EQ(load_obj_from_memory(kBom + "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/1\n", "", "m.obj", kDefault)
                 .mesh.triangles.size(),
             1u);
 }
@@ -890,6 +896,383 @@ TEST(Bsp, SpawnNumbersAreStrictAndTheirTextEscaped) {
   std::string bytes = good;
   bytes.replace(bytes.find(origin), origin.size(), "\"0 -20\x01 0\"");
   EXPECT_INPUT_ERROR([&] { load_bsp_bytes(bytes); }, {"\"origin\" \"0 -20\\x01 0\" is not 3 finite numbers"});
+}
+
+// ------------------------------------------- Robustness, second round (inputs)
+
+std::string nested(int depth) { return std::string(size_t(depth), '[') + std::string(size_t(depth), ']'); }
+
+// A .glb of `json` and `bin`, each padded to 4 bytes as the format wants.
+std::string make_glb(std::string json, std::string bin = "") {
+  while (json.size() % 4) json += ' ';
+  while (bin.size() % 4) bin += '\0';
+  std::string out = "glTF";
+  const auto u32 = [&](size_t value) {
+    const auto v = static_cast<uint32_t>(value);
+    out.append(reinterpret_cast<const char*>(&v), 4);
+  };
+  u32(2);
+  u32(12 + 8 + json.size() + (bin.empty() ? 0 : 8 + bin.size()));
+  u32(json.size());
+  out += "JSON" + json;
+  if (!bin.empty()) {
+    u32(bin.size());
+    out += std::string("BIN\0", 4) + bin;
+  }
+  return out;
+}
+
+LoadedGltf gltf_text(const std::string& text, const std::string& name = "t.gltf",
+                     const std::optional<glm::dvec2>& missing = std::nullopt) {
+  return load_gltf_from_memory(reinterpret_cast<const uint8_t*>(text.data()), text.size(), name,
+                               kDefault, missing);
+}
+
+nlohmann::json quad_gltf() { return nlohmann::json::parse(read_text(kData + "quad.gltf")); }
+
+// The quad's JSON with `member` added to the top-level object, as text.
+std::string with_member(const nlohmann::json& j, const std::string& member) {
+  std::string text = j.dump();
+  text.insert(text.size() - 1, "," + member);
+  return text;
+}
+
+TEST(Json, NestingPastTheCapIsRefusedBeforeAnyParse) {
+  const nlohmann::json quad = quad_gltf();
+  // 20,000 levels overflowed the stack in tinygltf's recursive conversion of extras (exit 139).
+  const std::string deep = with_member(quad, "\"extras\":" + nested(20000));
+  EXPECT_INPUT_ERROR([&] { gltf_text(deep); }, {"t.gltf:1: JSON nested deeper than 512 levels", "before parsing"});
+  const std::string deep_glb = make_glb(deep);
+  EXPECT_INPUT_ERROR([&] { gltf_text(deep_glb, "t.glb"); }, {"t.glb (JSON chunk):1: JSON nested deeper than 512"});
+  // The root object is level 1: extras 511 deep reach the cap and load, 512 deep pass it.
+  EXPECT_EQ(gltf_text(with_member(quad, "\"extras\":" + nested(511))).mesh.triangles.size(), 2u);
+  EXPECT_INPUT_ERROR([&] { gltf_text(with_member(quad, "\"extras\":" + nested(512))); }, {"deeper than 512"});
+  // Brackets inside strings, after escaped quotes and backslashes, are text, not nesting.
+  const std::string brackets = "\"extras\":\"\\\\\\\"" + std::string(1000, '[') + "\\\"" + std::string(1000, '{') + "\"";
+  EXPECT_EQ(gltf_text(with_member(quad, brackets)).mesh.triangles.size(), 2u);
+  // The line is counted, and the cap is a parameter other readers may pass.
+  EXPECT_INPUT_ERROR([] { check_json_depth("{\"a\":\n [\n  [1]]}", "c.json", 2); }, {"c.json:3: JSON nested deeper than 2 levels", "byte 11"});
+  EXPECT_NO_THROW(check_json_depth("{\"a\": \"[[[[\"}", "c.json", 1));
+  // A scene file, and a scene file that names the deep glTF.
+  EXPECT_INPUT_ERROR([] { parse_scene_json("{\"mesh\": \"a.obj\", \"x\": " + nested(20000) + "}", "s.json"); },
+                     {"s.json:1: JSON nested deeper than 512 levels"});
+  temp_file("deep.gltf", deep);
+  EXPECT_INPUT_ERROR([] { load_scene(temp_file("deep_scene.json", R"({"mesh": "deep.gltf", "camera": {"eye": [0,0,1], "target": [0,0,0], "fov_y": 60}})")); },
+                     {"deep.gltf:1: JSON nested deeper than 512 levels"});
+}
+
+TEST(JsonScene, DuplicateKeysAreRefusedWithTheirLines) {
+  const auto parse = [](const std::string& text) { return [=] { parse_scene_json(text, "bad.json"); }; };
+  const std::string camera = R"({"eye": [0,0,1], "target": [0,0,0], "fov_y": 60})";
+  EXPECT_INPUT_ERROR(parse("{\n  \"mesh\": \"a.obj\",\n  \"camera\": " + camera + ",\n  \"camera\": " + camera + "\n}"),
+                     {"bad.json:4: field 'camera' appears twice in one object (first at line 3)"});
+  EXPECT_INPUT_ERROR(parse(R"({"mesh": "a.obj", "camera": {"eye": [0,0,1], "target": [0,0,0], "eye": [0,0,2], "fov_y": 60}})"),
+                     {"bad.json:1: field 'camera.eye' appears twice"});
+  // Keys are compared as the parser reads them: \u0065 is 'e'.
+  EXPECT_INPUT_ERROR(parse(R"({"mesh": "a.obj", "m\u0065sh": "b.obj"})"), {"field 'mesh' appears twice"});
+  // The same key in two objects is no repetition; a syntax error is reported as such.
+  EXPECT_NO_THROW(parse(R"({"mesh": "a.obj", "resolution": [64, 48], "camera": {"eye": [0,0,1], "target": [0,0,0], "up": [0,1,0], "fov_y": 60}})")());
+  EXPECT_INPUT_ERROR(parse(R"({"mesh": "a.obj", "mesh": })"), {"bad.json: not valid JSON at byte"});
+  // glTF: the names within a JSON object must be unique (glTF 2.0 §3.2).
+  std::string text = quad_gltf().dump();
+  text.replace(text.find("\"mesh\":0"), 8, "\"mesh\":0,\"mesh\":0");
+  EXPECT_INPUT_ERROR([&] { gltf_text(text); }, {"t.gltf:1: field 'nodes[0].mesh' appears twice"});
+}
+
+TEST(Obj, MissingTextureCoordinatesAreRefusedUnlessTheSceneGivesThem) {
+  const auto load = [](const std::string& text) { return [=] { load_obj_from_memory(text, "", "bad.obj", kDefault); }; };
+  const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0.25 0.5\nvn 0 0 1\n";
+  EXPECT_INPUT_ERROR(load(tri + "f 1 2 3\n"), {"bad.obj:6: 'f' corner 1: '1' has no texture coordinate", "missing_texcoord"});
+  EXPECT_INPUT_ERROR(load(tri + "f 1/1 2/1 3\n"), {"bad.obj:6: 'f' corner 3: '3' has no texture coordinate"});
+  EXPECT_INPUT_ERROR(load(tri + "f 1/1/1 2//1 3/1/1\n"), {"bad.obj:6: 'f' corner 2: '2//1' has no texture coordinate"});
+  // Asked for explicitly, the missing ones take the given (s, t); the present one keeps its own.
+  const LoadedObj obj = load_obj_from_memory(tri + "f 1/1 2 3\n", "", "d.obj", kDefault, glm::dvec2(0.5, 0.75));
+  ASSERT_EQ(obj.mesh.vertices.size(), 3u);
+  EXPECT_EQ(obj.mesh.vertices[0].texcoord, glm::dvec2(0.25, 0.5));  // t flipped: 1 - 0.5
+  EXPECT_EQ(obj.mesh.vertices[1].texcoord, glm::dvec2(0.5, 0.75));
+  EXPECT_EQ(obj.mesh.vertices[2].texcoord, glm::dvec2(0.5, 0.75));
+  EXPECT_NE(obj.summary.find("2 corners without a texture coordinate given (0.5, 0.75)"), std::string::npos) << obj.summary;
+  // Through a scene file: refused without the field, drawn with it.
+  temp_file("no_vt.obj", "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n");
+  const std::string camera = R"("camera": {"eye": [0,0,3], "target": [0,0,0], "fov_y": 60})";
+  EXPECT_INPUT_ERROR([&] { load_scene(temp_file("no_vt.json", "{\"mesh\": \"no_vt.obj\", " + camera + "}")); },
+                     {"no_vt.obj:4: 'f' corner 1: '1' has no texture coordinate"});
+  const Scene scene = load_scene(temp_file("no_vt_default.json", "{\"mesh\": \"no_vt.obj\", \"missing_texcoord\": [0.5, 0.5], " + camera + "}"));
+  ASSERT_EQ(scene.triangles.size(), 1u);
+  EXPECT_EQ(scene.triangles[0].vertex[0].u, 128.0);  // 0.5 of the default 256 texels
+  EXPECT_INPUT_ERROR([] { parse_scene_json(R"({"mesh": "a.obj", "missing_texcoord": [0.5, "x"]})", "s.json"); },
+                     {"s.json: field 'missing_texcoord[1]': expected a number"});
+  EXPECT_INPUT_ERROR([] { parse_scene_json(R"({"mesh": "a.obj", "missing_texcoord": [0.5]})", "s.json"); },
+                     {"s.json: field 'missing_texcoord': expected an array of 2 numbers"});
+}
+
+TEST(Obj, NegativeIndicesPastTheStartAreRefusedLikePositiveOnes) {
+  const auto load = [](const std::string& text) { return [=] { load_obj_from_memory(text, "", "bad.obj", kDefault); }; };
+  const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n";
+  EXPECT_INPUT_ERROR(load(tri + "f 1/-9 2/-8 3/-7\n"),
+                     {"bad.obj:7: 'f' corner 1: '1/-9' refers to texture coordinate -9, before the first: only 3 'vt' lines precede this line"});
+  EXPECT_INPUT_ERROR(load(tri + "f 1/9 2/8 3/7\n"), {"bad.obj:7: 'f' corner 1: '1/9' refers to texture coordinate 9, but the file has 3"});
+  EXPECT_INPUT_ERROR(load(tri + "f -1/1 -2/1 -4/1\n"), {"bad.obj:7: 'f' corner 3: '-4/1' refers to vertex -4, before the first: only 3 'v' lines"});
+  EXPECT_INPUT_ERROR(load(tri + "f 1/1/-1 2/1/-1 3/1/-1\n"), {"bad.obj:7: 'f' corner 1: '1/1/-1' refers to normal -1, before the first: only 0 'vn' lines"});
+  // A negative index counts back from its face, so a vertex after the face does not make -4 valid.
+  EXPECT_INPUT_ERROR(load(tri + "f -4/1 -2/1 -1/1\nv 5 5 5\n"), {"bad.obj:7: 'f' corner 1: '-4/1' refers to vertex -4"});
+  const LoadedObj obj = load_obj_from_memory(tri + "f -3/-3 -2/-2 -1/-1\nv 5 5 5\n", "", "ok.obj", kDefault);
+  ASSERT_EQ(obj.mesh.vertices.size(), 3u);
+  EXPECT_EQ(obj.mesh.vertices[0].position, glm::dvec3(0, 0, 0));
+  EXPECT_EQ(obj.mesh.vertices[2].position, glm::dvec3(0, 1, 0));
+}
+
+TEST(Obj, BackslashContinuesALineAndLineNumbersStayTrue) {
+  const std::string text = "v 0 0 0\nv 1 0 \\\n  0\nv 0 1 0\nvt 0 0\nf 1/1 \\\n 2/1 \\\n 3/1\n";
+  const LoadedObj obj = load_obj_from_memory(text, "", "c.obj", kDefault);
+  ASSERT_EQ(obj.mesh.triangles.size(), 1u);
+  EXPECT_EQ(obj.mesh.vertices[1].position, glm::dvec3(1, 0, 0));
+  EXPECT_INPUT_ERROR([&] { load_obj_from_memory(text + "v 0 0 x\n", "", "c.obj", kDefault); }, {"c.obj:9: 'v' number 3: 'x'"});
+  EXPECT_INPUT_ERROR([&] { load_obj_from_memory("v 0 0 0\nf 1 \\\r\n 2 x\r\n", "", "c.obj", kDefault); },
+                     {"c.obj:2: 'f' corner 3: 'x'"});
+  // A backslash inside a comment does not swallow the next line; one on the last line ends it.
+  EXPECT_EQ(load_obj_from_memory("# see \\\n" + text + "f 1/1 2/1 3/1 \\", "", "c.obj", kDefault).mesh.triangles.size(), 2u);
+}
+
+TEST(Obj, FacesOfMoreThan255CornersAreFannedWhole) {
+  constexpr int kCorners = 1000;
+  std::string text = "vt 0 0\n", face = "f";
+  for (int k = 0; k < kCorners; ++k) {
+    const double angle = 2 * 3.14159265358979 * k / kCorners;
+    text += fmt::format("v {} {} 0\n", std::cos(angle), std::sin(angle));
+    face += fmt::format(" {}/1", k + 1);
+  }
+  const LoadedObj obj = load_obj_from_memory(text + face + "\n", "", "big.obj", kDefault);
+  ASSERT_EQ(obj.mesh.triangles.size(), size_t(kCorners - 2));
+  // Triangle k is the fan's (corner 0, corner k + 1, corner k + 2).
+  for (size_t t : {size_t(0), size_t(254), size_t(255), size_t(kCorners - 3)}) {
+    const double angle = 2 * 3.14159265358979 * double(t + 2) / kCorners;
+    EXPECT_NEAR(obj.mesh.vertices[3 * t + 2].position.x, std::cos(angle), 1e-6) << t;
+    EXPECT_NEAR(obj.mesh.vertices[3 * t + 2].position.y, std::sin(angle), 1e-6) << t;
+  }
+}
+
+TEST(Gltf, MissingTexcoordSetIsRefusedUnlessTheSceneGivesIt) {
+  nlohmann::json j = quad_gltf();
+  j["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["texCoord"] = 1;
+  EXPECT_INPUT_ERROR([&] { gltf_text(j.dump()); },
+                     {"t.gltf: node 0 mesh 0 primitive 0: no TEXCOORD_1 attribute, which material 0's base colour texture reads (texCoord 1)"});
+  j = quad_gltf();
+  j["meshes"][0]["primitives"][0]["attributes"].erase("TEXCOORD_0");
+  j["meshes"][0]["primitives"][0].erase("material");
+  EXPECT_INPUT_ERROR([&] { gltf_text(j.dump()); }, {"no TEXCOORD_0 attribute, which cdsim reads when the primitive has no texture"});
+  const LoadedGltf given = gltf_text(j.dump(), "t.gltf", glm::dvec2(0.5, 0.25));
+  ASSERT_EQ(given.mesh.vertices.size(), 6u);
+  for (const MeshVertex& v : given.mesh.vertices) EXPECT_EQ(v.texcoord, glm::dvec2(0.5, 0.25));
+  EXPECT_NE(given.summary.find("1 primitives without texture coordinates given (0.5, 0.25)"), std::string::npos) << given.summary;
+}
+
+TEST(Gltf, SparseAccessorsReplaceTheirElements) {
+  // The quad's buffer, then sparse data: indices (uint16) 2 and 3, values two VEC3.
+  const std::vector<float> base = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0, 0, 1, 1, 1, 1, 0, 0, 0};
+  const std::vector<uint16_t> indices = {0, 1, 2, 0, 2, 3, 2, 3};  // 6 triangle indices, then the sparse ones
+  const std::vector<float> values = {1, 1, -1, -1, 1, -2};
+  std::string buffer;
+  buffer.append(reinterpret_cast<const char*>(base.data()), 4 * base.size());        // 0..80
+  buffer.append(reinterpret_cast<const char*>(indices.data()), 2 * indices.size());  // 80..96
+  buffer.append(reinterpret_cast<const char*>(values.data()), 4 * values.size());    // 96..120
+  nlohmann::json j = quad_gltf();
+  j["buffers"][0] = {{"byteLength", buffer.size()}, {"uri", "data:application/octet-stream;base64," + base64(buffer)}};
+  j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", 92}, {"byteLength", 4}});
+  j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", 96}, {"byteLength", 24}});
+  const nlohmann::json sparse = {{"count", 2},
+                                 {"indices", {{"bufferView", 3}, {"componentType", 5123}}},
+                                 {"values", {{"bufferView", 4}}}};
+  j["accessors"][0]["sparse"] = sparse;
+  j["accessors"][0].erase("min");
+  j["accessors"][0].erase("max");
+  const auto z_of = [](const LoadedGltf& g) {
+    std::vector<double> z;
+    for (const MeshVertex& v : g.mesh.vertices) z.push_back(v.position.z);
+    return z;
+  };
+  // Triangles (0 1 2) and (0 2 3); the node moves z by -3.
+  EXPECT_EQ(z_of(gltf_text(j.dump())), (std::vector<double>{-3, -3, -4, -3, -4, -5}));
+  // Without a buffer view the base values are zeros.
+  nlohmann::json no_base = j;
+  no_base["accessors"][0].erase("bufferView");
+  const LoadedGltf zeros = gltf_text(no_base.dump());
+  EXPECT_EQ(zeros.mesh.vertices[0].position, glm::dvec3(0, 0, -3));
+  EXPECT_EQ(zeros.mesh.vertices[2].position, glm::dvec3(1, 1, -4));
+  // Indices that do not increase, or reach the count, are refused by name.
+  j["bufferViews"][3]["byteOffset"] = 90;  // indices 3, 2
+  EXPECT_INPUT_ERROR([&] { gltf_text(j.dump()); }, {"POSITION: accessor 0: sparse index 1 is 2: sparse indices must increase strictly"});
+  j["bufferViews"][3]["byteOffset"] = 92;
+  j["accessors"][0]["sparse"]["count"] = 5;
+  EXPECT_INPUT_ERROR([&] { gltf_text(j.dump()); }, {"sparse.count 5 is outside 1..4"});
+}
+
+TEST(Gltf, ProjectiveMatricesAndNonUnitQuaternionsAreRefused) {
+  nlohmann::json j = quad_gltf();
+  j["nodes"][0].erase("translation");
+  j["nodes"][0]["matrix"] = {1, 0, 0, 0.5, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, -3, 1};
+  EXPECT_INPUT_ERROR([&] { gltf_text(j.dump()); }, {"t.gltf: node 0: matrix's last row is (0.5, 0, 0, 1)", "must be affine"});
+  j["nodes"][0]["matrix"] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, -3, 2};
+  EXPECT_INPUT_ERROR([&] { gltf_text(j.dump()); }, {"matrix's last row is (0, 0, 0, 2)"});
+  j["nodes"][0]["matrix"] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, -3, 1};
+  EXPECT_EQ(gltf_text(j.dump()).mesh.vertices[0].position, glm::dvec3(-1, -1, -3));
+  j = quad_gltf();
+  j["nodes"][0]["rotation"] = {0, 0, 0, 0};
+  EXPECT_INPUT_ERROR([&] { gltf_text(j.dump()); }, {"t.gltf: node 0: rotation (0, 0, 0, 0) has length 0", "unit quaternion"});
+  j["nodes"][0]["rotation"] = {0, 0, 0, 2};
+  EXPECT_INPUT_ERROR([&] { gltf_text(j.dump()); }, {"rotation (0, 0, 0, 2) has length 2"});
+  // A quarter turn about z written with four digits is a unit quaternion, normalised.
+  j["nodes"][0]["rotation"] = {0, 0, 0.7071, 0.7071};
+  const glm::dvec3 turned = gltf_text(j.dump()).mesh.vertices[0].position;  // (-1, -1, 0) turned
+  EXPECT_NEAR(turned.x, 1, 1e-12);
+  EXPECT_NEAR(turned.y, -1, 1e-12);
+  EXPECT_EQ(turned.z, -3);
+}
+
+TEST(Gltf, UnknownPrimitiveModeAndBrokenGlbAreNamed) {
+  nlohmann::json j = quad_gltf();
+  j["meshes"][0]["primitives"][0]["mode"] = 9;
+  EXPECT_INPUT_ERROR([&] { gltf_text(j.dump()); }, {"t.gltf: node 0 mesh 0 primitive 0: mode 9 is not a glTF primitive mode (0 to 6"});
+  const std::string good = read_text(kData + "quad.glb");
+  const auto load = [](const std::string& bytes) { return [=] { gltf_text(bytes, "b.glb"); }; };
+  const auto put = [](std::string bytes, size_t at, uint32_t value) {
+    std::memcpy(&bytes[at], &value, 4);
+    return bytes;
+  };
+  uint32_t json_length = 0;
+  std::memcpy(&json_length, &good[12], 4);
+  const size_t bin_at = 20 + json_length;
+  EXPECT_INPUT_ERROR(load(good.substr(0, 10)), {"b.glb: binary glTF (.glb): 10 bytes, shorter than the 12-byte header"});
+  EXPECT_INPUT_ERROR(load(put(good, 8, uint32_t(good.size() + 4))),
+                     {fmt::format("b.glb: binary glTF (.glb): the header's length at byte 8 is {} bytes, but the file has {}", good.size() + 4, good.size())});
+  std::string wrong_type = good;
+  wrong_type[19] = 'X';
+  EXPECT_INPUT_ERROR(load(wrong_type), {"the first chunk (byte 12) has type 'JSOX'; it must be 'JSON'"});
+  EXPECT_INPUT_ERROR(load(put(good, 12, 100000)), {"the JSON chunk's length at byte 12 is 100000 bytes"});
+  EXPECT_INPUT_ERROR(load(put(good, bin_at, 100000)), {fmt::format("the BIN chunk's length at byte {} is 100000 bytes", bin_at)});
+  std::string wrong_bin = good;
+  wrong_bin[bin_at + 4] = 'X';
+  EXPECT_INPUT_ERROR(load(wrong_bin), {fmt::format("the chunk at byte {} has type 'XIN\\x00'", bin_at)});
+}
+
+TEST(Gltf, RequiredExtensionIsNamedBeforeTheParseThatWouldFail) {
+  // As Draco leaves it: accessors without buffer views, which tinygltf refuses first.
+  nlohmann::json j = quad_gltf();
+  for (auto& accessor : j["accessors"]) accessor.erase("bufferView");
+  j["extensionsUsed"] = {"KHR_draco_mesh_compression"};
+  j["extensionsRequired"] = {"KHR_draco_mesh_compression"};
+  EXPECT_INPUT_ERROR([&] { gltf_text(j.dump()); }, {"t.gltf: requires the extension 'KHR_draco_mesh_compression'"});
+  EXPECT_INPUT_ERROR([&] { gltf_text(make_glb(j.dump()), "t.glb"); }, {"t.glb (JSON chunk): requires the extension 'KHR_draco_mesh_compression'"});
+  j["extensionsRequired"] = "KHR_draco_mesh_compression";
+  EXPECT_INPUT_ERROR([&] { gltf_text(j.dump()); }, {"t.gltf: extensionsRequired is string, not an array of names"});
+}
+
+TEST(JsonScene, MissingMeshThroughASymlinkNamesTheSceneAndTheField) {
+  const std::string dir = ::testing::TempDir() + "symlinked_scene/";
+  std::filesystem::create_directories(dir + "real");
+  temp_file("symlinked_scene/real/scene.json", R"({"mesh": "nowhere.obj", "camera": {"eye": [0,0,1], "target": [0,0,0], "fov_y": 60}})");
+  std::filesystem::remove(dir + "link.json");
+  std::filesystem::create_symlink("real/scene.json", dir + "link.json");
+  EXPECT_INPUT_ERROR([&] { load_scene(dir + "link.json"); },
+                     {"link.json: field 'mesh': " + dir + "nowhere.obj: cannot open",
+                      "taken from the directory of " + dir + "link.json as named, not from that of the file it links to"});
+  EXPECT_INPUT_ERROR([&] { load_scene(dir + "real/scene.json"); }, {"real/scene.json: field 'mesh': " + dir + "real/nowhere.obj: cannot open"});
+}
+
+// ------------------------------------------------------------ camera range
+
+TEST(Camera, FieldOfViewAndNearPlaneOutsideTheExactRangeAreRefused) {
+  EXPECT_INPUT_ERROR([] { parse_camera_option("0,0,1,0,0,0,0,1,0,1e-10", 0.05); },
+                     {"--camera: fov_y 1e-10 is below 1e-06 degrees", "[1e-06, 180)"});
+  EXPECT_INPUT_ERROR([] { parse_camera_option("0,0,1,0,0,0,0,1,0,60,1e-40", 0.05); },
+                     {"--camera: near plane 1e-40 is below 1e-36", "[1e-36, 1e+12]"});
+  EXPECT_INPUT_ERROR([] { parse_scene_json(R"({"mesh": "a.obj", "camera": {"eye": [0,0,1], "target": [0,0,0], "fov_y": 1e-16}})", "s.json"); },
+                     {"s.json: camera: fov_y 1e-16 is below 1e-06 degrees"});
+  EXPECT_NO_THROW(parse_camera_option("0,0,1,0,0,0,0,1,0,1e-6,1e-36", 0.05));
+  EXPECT_NO_THROW(parse_camera_option(fmt::format("0,0,1,0,0,0,0,1,0,{},1e12", std::nextafter(180.0, 0.0)), 0.05));
+}
+
+// How many times the unit's coverage (top-left rule on snapped vertices)
+// draws each pixel of `scene`.
+std::vector<int> coverage_counts(const Scene& scene) {
+  const Widths widths;
+  std::vector<int> count(size_t(scene.width) * size_t(scene.height), 0);
+  for (size_t i = 0; i < scene.triangles.size(); ++i) {
+    const UnitTriangle triangle = to_unit(scene.triangles[i], widths, i);
+    const EdgeSet edges = make_edges(triangle, widths.subpixel_bits);
+    const PixelBox box = bounding_box(triangle, widths.subpixel_bits, scene.width, scene.height);
+    for (int64_t y = box.y_lo; y <= box.y_hi; ++y)
+      for (int64_t x = box.x_lo; x <= box.x_hi; ++x)
+        if (covers(edges, x, y)) ++count[size_t(y) * size_t(scene.width) + size_t(x)];
+  }
+  return count;
+}
+
+// The front end's watertightness at the edges of the accepted camera range: a
+// closed quad (two triangles sharing a diagonal) that covers the whole view,
+// its corners far outside the guard band, draws every pixel exactly once.
+TEST(Camera, ScreenFillingQuadCoversEveryPixelOnceAtTheExtremeCameras) {
+  struct Extreme {
+    double fov_y, near_plane;
+  };
+  const double widest = std::nextafter(180.0, 0.0);
+  for (const Extreme e : {Extreme{limits::kMinFovDegrees, 0.05}, Extreme{limits::kMinFovDegrees, limits::kMinNearPlane},
+                          Extreme{limits::kMinFovDegrees, limits::kMaxCameraCoordinate}, Extreme{60, limits::kMinNearPlane},
+                          Extreme{60, limits::kMaxCameraCoordinate}, Extreme{widest, 0.05}, Extreme{widest, 1e-3}}) {
+    SCOPED_TRACE(fmt::format("fov_y {} near {}", e.fov_y, e.near_plane));
+    const double distance = std::max(3 * e.near_plane, 1.0);
+    const double half_height = distance * std::tan(glm::radians(e.fov_y) / 2);
+    const double size = 8 * half_height;  // beyond the guard band (3 half-views) with room to spare
+    Mesh mesh;
+    mesh.vertices = {{{-size, -size, -distance}, {0, 0}}, {{size, -size, -distance}, {1, 0}},
+                     {{size, size, -distance}, {1, 1}}, {{-size, size, -distance}, {0, 1}}};
+    mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+    mesh.texture_size = {{256, 256}, {256, 256}};
+    // The diagonal y = x crosses the view off its centre, at a slant.
+    const double offset = std::min(half_height, distance);
+    Camera camera;
+    camera.eye = {0.3 * offset, 0.1 * offset, 0};
+    camera.target = camera.eye + glm::dvec3(0, 0, -1);
+    camera.fov_y_degrees = e.fov_y;
+    camera.near_plane = e.near_plane;
+    validate_camera(camera, "extreme");
+    const std::vector<int> count = coverage_counts(project(mesh, camera, 96, 64, "quad"));
+    size_t wrong = 0;
+    for (int c : count) wrong += c != 1;
+    EXPECT_EQ(wrong, 0u);
+  }
+}
+
+// The two triangles of a shared edge walk it in opposite directions; clipping
+// must give both the same crossing points to the last bit, or the snapped
+// shared edge differs and pixels along it are drawn twice or not at all.
+TEST(Camera, ClippedSharedEdgesAreBitwiseShared) {
+  std::mt19937_64 random(40);
+  std::uniform_real_distribution<double> spread(-1e6, 1e6);
+  for (int trial = 0; trial < 200; ++trial) {
+    SCOPED_TRACE(trial);
+    // P and Q far to either side, so that the edge PQ crosses the view and
+    // both guard-band planes; R and S on either side of it.
+    const glm::dvec3 p(-1e6, spread(random) * 1e-6, -3 - std::fabs(spread(random)) * 1e-5);
+    const glm::dvec3 q(1e6, spread(random) * 1e-6, -3 - std::fabs(spread(random)) * 1e-5);
+    Mesh mesh;
+    mesh.vertices = {{p, {0, 0}}, {q, {1, 0}}, {{0, 1e6, -3}, {0, 1}}, {q, {1, 0}}, {p, {0, 0}}, {{0, -1e6, -3}, {1, 1}}};
+    mesh.triangles = {{0, 1, 2}, {3, 4, 5}};
+    mesh.texture_size = {{256, 256}, {256, 256}};
+    Camera camera;
+    camera.eye = {0, 0, 0};
+    camera.target = {0, 0, -1};
+    camera.fov_y_degrees = 40;
+    const Scene scene = project(mesh, camera, 640, 480, "edge");
+    std::set<std::array<double, 3>> first, shared;
+    for (const ScreenTriangle& t : scene.triangles)
+      for (const ScreenVertex& v : t.vertex)
+        if (t.origin == "mesh triangle 0") first.insert({v.x, v.y, v.w});
+    for (const ScreenTriangle& t : scene.triangles)
+      for (const ScreenVertex& v : t.vertex)
+        if (t.origin == "mesh triangle 1" && first.count({v.x, v.y, v.w})) shared.insert({v.x, v.y, v.w});
+    EXPECT_EQ(shared.size(), 2u);
+  }
 }
 
 }  // namespace
