@@ -6,6 +6,8 @@ need nothing but the repository. Deterministic: same bytes every run.
 """
 import base64
 import json
+import math
+import os
 import struct
 import zipfile
 import zlib
@@ -189,3 +191,70 @@ with zipfile.ZipFile('folders.pk3', 'w', zipfile.ZIP_DEFLATED) as z:
         if name.endswith('/'):
             info.external_attr = 0o40755 << 16 | 0x10
         z.writestr(info, data)
+
+# --- Robustness, second round (issue 40): inputs that used to be read wrong
+# or refused, for the command-line checks in tests/CMakeLists.txt.
+# Faces without texture coordinates (they used to become (0, 0)), and a
+# negative vt index past the start (it used to be accepted).
+write('no_texcoords.obj', "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n")
+write('no_texcoords_default.json', json.dumps({
+    "mesh": "no_texcoords.obj", "missing_texcoord": [0.5, 0.5],
+    "camera": {"eye": [0, 0, 3], "target": [0, 0, 0], "fov_y": 60}, "resolution": [64, 48]}, indent=1) + "\n")
+write('negative_past_start.obj', "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/-9 2/-8 3/-7\n")
+# Legal OBJ that used to be refused: a backslash continuation and a face of
+# 300 corners (a disc).
+disc = ["# a disc of 300 corners, its face continued over two lines", "vt 0.5 0.5"]
+disc += ["v %.6f %.6f 0" % (math.cos(2 * math.pi * k / 300), math.sin(2 * math.pi * k / 300)) for k in range(300)]
+corners = ["%d/1" % (k + 1) for k in range(300)]
+disc.append("f " + " ".join(corners[:150]) + " \\")
+disc.append("  " + " ".join(corners[150:]))
+write('disc_300_corners.obj', "\n".join(disc) + "\n")
+# A scene whose "camera" is given twice.
+write('duplicate_camera.json', """{
+ "mesh": "cube.obj",
+ "camera": {"eye": [3, 2, 4], "target": [0, 0, 0], "fov_y": 50},
+ "camera": {"eye": [0, 0, 9], "target": [0, 0, 0], "fov_y": 50}
+}
+""")
+# glTF variants of the quad: texCoord 1 without TEXCOORD_1; a projective node
+# matrix; a zero quaternion; primitive mode 9; Draco required with accessors
+# left without buffer views; positions as a sparse accessor without a buffer view.
+variant = gltf({"uri": "checker_64x32.png"})
+variant["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["texCoord"] = 1
+write('texcoord1_missing.gltf', json.dumps(variant, indent=1) + "\n")
+variant = gltf({"uri": "checker_64x32.png"})
+variant["nodes"][0] = {"mesh": 0, "matrix": [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, -0.25, 0, 0, -3, 1]}
+write('projective_matrix.gltf', json.dumps(variant, indent=1) + "\n")
+variant = gltf({"uri": "checker_64x32.png"})
+variant["nodes"][0]["rotation"] = [0, 0, 0, 0]
+write('zero_quaternion.gltf', json.dumps(variant, indent=1) + "\n")
+variant = gltf({"uri": "checker_64x32.png"})
+variant["meshes"][0]["primitives"][0]["mode"] = 9
+write('mode9.gltf', json.dumps(variant, indent=1) + "\n")
+variant = gltf({"uri": "checker_64x32.png"})
+for accessor in variant["accessors"]:
+    del accessor["bufferView"]
+variant["extensionsUsed"] = ["KHR_draco_mesh_compression"]
+variant["extensionsRequired"] = ["KHR_draco_mesh_compression"]
+write('draco_accessors.gltf', json.dumps(variant, indent=1) + "\n")
+variant = gltf({"uri": "checker_64x32.png"})
+sparse_data = struct.pack('<4H', 0, 1, 2, 3) + b''.join(struct.pack('<3f', *p) for p in positions)
+variant["buffers"].append({"byteLength": len(sparse_data),
+                           "uri": "data:application/octet-stream;base64," + base64.b64encode(sparse_data).decode()})
+variant["bufferViews"] += [{"buffer": 1, "byteOffset": 0, "byteLength": 8},
+                           {"buffer": 1, "byteOffset": 8, "byteLength": 48}]
+del variant["accessors"][0]["bufferView"]
+variant["accessors"][0]["sparse"] = {"count": 4, "indices": {"bufferView": 3, "componentType": 5123},
+                                     "values": {"bufferView": 4}}
+write('sparse_positions.gltf', json.dumps(variant, indent=1) + "\n")
+# The quad's .glb with its first chunk typed 'JSOX' (tinygltf said only "Invalid glTF binary.").
+glb = bytearray(open('quad.glb', 'rb').read())
+glb[19] = ord('X')
+write('bad_chunk_type.glb', bytes(glb))
+# A scene reached through a symbolic link, naming a mesh that is not there.
+os.makedirs('linked', exist_ok=True)
+write('linked/missing_mesh.json', json.dumps({
+    "mesh": "nowhere.obj", "camera": {"eye": [0, 0, 3], "target": [0, 0, 0], "fov_y": 60}}, indent=1) + "\n")
+if os.path.lexists('missing_mesh_link.json'):
+    os.remove('missing_mesh_link.json')
+os.symlink('linked/missing_mesh.json', 'missing_mesh_link.json')
