@@ -1222,7 +1222,11 @@ TEST(Camera, ScreenFillingQuadCoversEveryPixelOnceAtTheExtremeCameras) {
     SCOPED_TRACE(fmt::format("fov_y {} near {}", e.fov_y, e.near_plane));
     const double distance = std::max(3 * e.near_plane, 1.0);
     const double half_height = distance * std::tan(glm::radians(e.fov_y) / 2);
-    const double size = 8 * half_height;  // beyond the guard band (3 half-views) with room to spare
+    // At least as large as its distance, so that at a narrow view its corners
+    // lie ~1/tan(fov_y / 2) half-views off axis, where the clipping's rounding
+    // grows (at 1e-15 degrees this quad loses a triangle); at a wide view 8
+    // half-views, beyond the guard band (3) with room to spare.
+    const double size = distance * std::max(1.0, 8 * half_height / distance);
     Mesh mesh;
     mesh.vertices = {{{-size, -size, -distance}, {0, 0}}, {{size, -size, -distance}, {1, 0}},
                      {{size, size, -distance}, {1, 1}}, {{-size, size, -distance}, {0, 1}}};

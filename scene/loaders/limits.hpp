@@ -50,7 +50,7 @@ inline constexpr double kMaxCameraCoordinate = 1e12;
 // tan(angle off axis) / tan(fov_y / 2). At 1e-6 degrees a vertex 45 degrees
 // off axis is 1.1e8 half-viewports away, an error of 1e-4 pixel at 8192
 // pixels, a fortieth of a subpixel; at 1e-10 degrees the error is a pixel, and
-// at 1e-16 degrees a screen-filling quad draws half the screen (docs/scenes.md,
+// at 1e-15 degrees a screen-filling quad draws half the screen (docs/scenes.md,
 // "Camera range"). Any fov_y below 180 degrees keeps coverage exact.
 inline constexpr double kMinFovDegrees = 1e-6;
 
