@@ -1213,14 +1213,18 @@ std::vector<int> coverage_counts(const Scene& scene) {
 // its corners far outside the guard band, draws every pixel exactly once.
 TEST(Camera, ScreenFillingQuadCoversEveryPixelOnceAtTheExtremeCameras) {
   struct Extreme {
-    double fov_y, near_plane;
+    double fov_y, near_plane, distance = 0;  // 0: three near planes, at least 1
   };
   const double widest = std::nextafter(180.0, 0.0);
+  // The last two are scales: a mesh 1e-30 across just beyond the smallest
+  // near plane, and one 1e37 across, near the largest w whose 1/w is a
+  // normal float (beyond it the unit's input check refuses the triangle).
   for (const Extreme e : {Extreme{limits::kMinFovDegrees, 0.05}, Extreme{limits::kMinFovDegrees, limits::kMinNearPlane},
                           Extreme{limits::kMinFovDegrees, limits::kMaxCameraCoordinate}, Extreme{60, limits::kMinNearPlane},
-                          Extreme{60, limits::kMaxCameraCoordinate}, Extreme{widest, 0.05}, Extreme{widest, 1e-3}}) {
-    SCOPED_TRACE(fmt::format("fov_y {} near {}", e.fov_y, e.near_plane));
-    const double distance = std::max(3 * e.near_plane, 1.0);
+                          Extreme{60, limits::kMaxCameraCoordinate}, Extreme{widest, 0.05}, Extreme{widest, 1e-3},
+                          Extreme{60, limits::kMinNearPlane, 1e-30}, Extreme{limits::kMinFovDegrees, 0.05, 1e37}}) {
+    SCOPED_TRACE(fmt::format("fov_y {} near {} distance {}", e.fov_y, e.near_plane, e.distance));
+    const double distance = e.distance > 0 ? e.distance : std::max(3 * e.near_plane, 1.0);
     const double half_height = distance * std::tan(glm::radians(e.fov_y) / 2);
     // At least as large as its distance, so that at a narrow view its corners
     // lie ~1/tan(fov_y / 2) half-views off axis, where the clipping's rounding
@@ -1233,7 +1237,7 @@ TEST(Camera, ScreenFillingQuadCoversEveryPixelOnceAtTheExtremeCameras) {
     mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
     mesh.texture_size = {{256, 256}, {256, 256}};
     // The diagonal y = x crosses the view off its centre, at a slant.
-    const double offset = std::min(half_height, distance);
+    const double offset = std::min({half_height, distance, 0.1 * limits::kMaxCameraCoordinate});
     Camera camera;
     camera.eye = {0.3 * offset, 0.1 * offset, 0};
     camera.target = camera.eye + glm::dvec3(0, 0, -1);
