@@ -898,7 +898,7 @@ module setup_engine #(
       // The box bounds them too: line = m minor_offset - round(m g o).
       round_product = (GBits+PixelBits+4)'(products[AccBits*`CD_SETUP_ROUND_LAST +: AccBits])  // g (columns - 1)
                       <<< density_log2_q;
-      round_last = LineRangeBits'((round_product + (GBits+PixelBits+4)'(1 <<< (GFrac - 1))) >>> GFrac);
+      round_last = LineRangeBits'((GBits+PixelBits+4)'((round_product + (GBits+PixelBits+4)'(1 <<< (GFrac - 1))) >>> GFrac));
       minor_extent = (LineRangeBits'($signed({1'b0, minor_hi_d})) - LineRangeBits'($signed({1'b0, minor_lo_d})))
                      <<< density_log2_q;
       if (round_last > 0) begin
