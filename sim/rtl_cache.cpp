@@ -1,8 +1,12 @@
 // The cache of RTL verilated for widths that no built-in configuration has.
 //
+//   <cache>/                   a folder of this user's, mode 0700, checked
+//                              (owner, mode) before each use: cdsim loads code
+//                              from it (cache_files.hpp, check_cache_folder)
 //   <cache>/<model key>/       one width configuration, verilated and compiled;
-//                              built in <cache>/tmp-*, renamed into place when
-//                              complete, so a folder under this name is finished
+//                              built in <cache>/tmp-<model key>-*, renamed into
+//                              place when complete, so a folder under this name
+//                              is finished
 //     cd_widths.svh            rtl_header(widths); for the adaptive unit
 //                              (rtl/adaptive_unit.sv), its leaf unit's
 //     inputs.txt               the widths and everything else the key covers
@@ -10,8 +14,19 @@
 //                              the adaptive unit has the scan unit's ports)
 //     obj/                     its objects, compiled as cdsim_rtl's plus -fPIC
 //     log/                     verilator.log and one log per compile
+//     manifest                 size and hash of every file above, written last
 //     bench-<bench key>.so     bench_entry.cpp and obj/, for one cdsim build
-//   <cache>/tmp-*              a build in progress, failed or interrupted: never used
+//     bench-<bench key>.so.manifest  its size and hash
+//   <cache>/<model key>.lock   flock(2) while a cdsim builds or loads the entry:
+//                              a second one waits instead of building it twice
+//   <cache>/failed-<model key>/  the logs of the last failed build of the entry
+//
+// An entry is checked against its manifests before use (a bench-*.so that a
+// full disk truncated would otherwise crash the dlopen with SIGBUS); a
+// mismatch is said, naming the file, and the entry rebuilt. A failed or
+// interrupted build leaves no tmp- folder: its logs go to failed-<model key>/,
+// and SIGINT or SIGTERM stops Verilator and the compilers as process groups
+// (model/child_process.hpp).
 //
 // The model key is FNV-1a 64 of the header, every rtl/*.sv, Verilator's binary,
 // version and arguments, and the compiler and its flags. The bench key adds
@@ -22,13 +37,14 @@
 #include "rtl_cache.hpp"
 
 #include "cache_files.hpp"
+#include "child_process.hpp"
+#include "interrupt.hpp"
 
 #include <dlfcn.h>
 #include <elf.h>
 #include <fcntl.h>
 #include <link.h>
 #include <sched.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -44,6 +60,8 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <memory>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
@@ -52,8 +70,6 @@
 #include "derived_widths.hpp"
 #include "rtl_build.hpp"
 
-extern char** environ;
-
 namespace cdsim::rtl {
 
 namespace fs = std::filesystem;
@@ -61,7 +77,7 @@ namespace fs = std::filesystem;
 namespace {
 
 // Bumped whenever the layout or the build steps below change.
-constexpr const char* kCacheVersion = "rtl-cache-1";
+constexpr const char* kCacheVersion = "rtl-cache-2";
 constexpr const char* kPrefix = "Vcd_scan_unit_custom";
 
 std::string hex(uint64_t value) { return fmt::format("{:016x}", value); }
@@ -133,62 +149,50 @@ struct Step {
   std::string what;  // "Verilator", "compiling X.cpp"
 };
 
-pid_t spawn(const Step& step) {
-  write_file_atomic(step.log, "$ " + joined(step.argv) + "\n");
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 1, step.log.c_str(), O_WRONLY | O_APPEND, 0);
-  posix_spawn_file_actions_adddup2(&actions, 1, 2);
-  std::vector<char*> argv;
-  for (const std::string& a : step.argv) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
-  pid_t pid = 0;
-  const int error = posix_spawnp(&pid, argv[0], &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (error != 0)
-    throw std::runtime_error(fmt::format("cannot run {}: {}", step.argv[0], std::strerror(error)));
-  return pid;
-}
-
-std::string failure_of(const Step& step, int status) {
-  std::string out = fmt::format(
-      "{} failed ({}); log: {}", step.what,
-      WIFEXITED(status) ? fmt::format("exit {}", WEXITSTATUS(status))
-                        : fmt::format("signal {}", WTERMSIG(status)),
-      step.log.string());
-  std::ifstream log(step.log);
+std::string failure_of(const Step& step, int status, const fs::path& log) {
+  std::string out = fmt::format("{} failed ({}); log: {}", step.what, describe_status(status), log.string());
+  std::ifstream in(log);
   std::string line;
-  std::getline(log, line);  // the command
-  for (int shown = 0; shown < 15 && std::getline(log, line); ++shown) out += "\n  " + line;
+  std::getline(in, line);  // the command
+  for (int shown = 0; shown < 15 && std::getline(in, line); ++shown) out += "\n  " + line;
   return out;
 }
 
+// A step that failed; the message is made once its log has its final place.
+struct StepFailed {
+  Step step;
+  int status;
+};
+
 // Runs the steps, up to `jobs` at a time; after a failure starts no more, waits
-// for those running and throws the first failure.
+// for those running and throws the first failure as StepFailed. SIGINT or
+// SIGTERM stops every running step's process group and throws Interrupted.
 void run_steps(const std::vector<Step>& steps, size_t jobs) {
-  std::map<pid_t, size_t> running;
-  std::string failure;
+  std::vector<std::pair<std::unique_ptr<ChildProcess>, size_t>> running;
+  std::optional<StepFailed> failure;
   size_t next = 0;
-  while (!running.empty() || (failure.empty() && next < steps.size())) {
-    while (failure.empty() && next < steps.size() && running.size() < jobs) {
-      running[spawn(steps[next])] = next;
+  while (!running.empty() || (!failure && next < steps.size())) {
+    while (!failure && next < steps.size() && running.size() < jobs) {
+      write_file_atomic(steps[next].log, "$ " + joined(steps[next].argv) + "\n");
+      running.emplace_back(std::make_unique<ChildProcess>(steps[next].argv, steps[next].log), next);
       ++next;
     }
-    int status = 0;
-    const pid_t pid = waitpid(-1, &status, 0);
-    if (pid < 0) {
-      if (errno == EINTR) continue;
-      throw std::runtime_error(fmt::format("waitpid: {}", std::strerror(errno)));
+    throw_if_interrupted();  // the destructors stop what runs
+    bool any = false;
+    for (auto it = running.begin(); it != running.end();) {
+      int status = 0;
+      if (!it->first->finished(status)) {
+        ++it;
+        continue;
+      }
+      any = true;
+      if (!(WIFEXITED(status) && WEXITSTATUS(status) == 0) && !failure)
+        failure = StepFailed{steps[it->second], status};
+      it = running.erase(it);
     }
-    const auto it = running.find(pid);
-    if (it == running.end()) continue;
-    const Step& step = steps[it->second];
-    running.erase(it);
-    if (!(WIFEXITED(status) && WEXITSTATUS(status) == 0) && failure.empty())
-      failure = failure_of(step, status);
+    if (!any) std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
-  if (!failure.empty()) throw std::runtime_error(failure);
+  if (failure) throw *failure;
 }
 
 // Build times of the last builds in this cache, for the estimate printed first.
@@ -217,15 +221,21 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// Leftovers of interrupted or failed builds, kept a day for their logs.
-void remove_stale(const fs::path& dir, const std::string& prefix) {
+// Work folders that a killed cdsim (SIGKILL: nothing ran to remove them)
+// left: those of this entry at once (its lock is held, so no one builds it),
+// those of other entries after a day.
+void remove_leftovers(const fs::path& root, const fs::path& model_dir) {
   const auto day_ago = fs::file_time_type::clock::now() - std::chrono::hours(24);
+  const std::string own = "tmp-" + model_dir.filename().string() + "-";
   std::error_code ec;
-  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+  for (const auto& entry : fs::directory_iterator(root, ec)) {
     const std::string name = entry.path().filename().string();
-    if (name.rfind(prefix, 0) != 0) continue;
-    if (entry.last_write_time(ec) < day_ago) fs::remove_all(entry.path(), ec);
+    if (name.rfind("tmp-", 0) != 0) continue;
+    if (name.rfind(own, 0) == 0 || entry.last_write_time(ec) < day_ago) fs::remove_all(entry.path(), ec);
   }
+  if (fs::is_directory(model_dir, ec))
+    for (const auto& entry : fs::directory_iterator(model_dir, ec))
+      if (entry.path().filename().string().rfind("tmp-bench-", 0) == 0) fs::remove_all(entry.path(), ec);
 }
 
 // Verilator's coverage options for a coverage build, and the cover points.
@@ -279,18 +289,34 @@ std::string model_recipe(CoverageBuild coverage, bool adaptive) {
   return recipe;
 }
 
+// The logs of a failed build, kept in <root>/failed-<key>/ (the build's own
+// folder goes), and the failure with the log at its new place.
+[[noreturn]] void fail_build(const StepFailed& failed, const fs::path& logs, const fs::path& kept) {
+  std::error_code ec;
+  fs::create_directories(kept, ec);
+  for (const fs::path& log : files_in(logs, ".log")) fs::copy_file(log, kept / log.filename(), fs::copy_options::overwrite_existing, ec);
+  const fs::path log = kept / failed.step.log.filename();
+  throw std::runtime_error(failure_of(failed.step, failed.status, fs::exists(log) ? log : failed.step.log));
+}
+
 void build_model(const fs::path& root, const fs::path& model_dir, const std::string& header,
                  const std::string& inputs, CoverageBuild coverage, bool adaptive) {
   const fs::path tmp = root / fmt::format("tmp-{}-{}", model_dir.filename().string(), getpid());
+  const fs::path kept_logs = root / ("failed-" + model_dir.filename().string());
+  RemoveOnExit remove_tmp(tmp);
   fs::remove_all(tmp);
   fs::create_directories(tmp / "log");
   fs::create_directories(tmp / "obj");
   write_file_atomic(tmp / "cd_widths.svh", header);
   write_file_atomic(tmp / "inputs.txt", inputs);
   const auto start = std::chrono::steady_clock::now();
-  run_steps({{verilator_command(tmp / "verilated", tmp, coverage, adaptive), tmp / "log/verilator.log",
-              "Verilator"}},
-            1);
+  try {
+    run_steps({{verilator_command(tmp / "verilated", tmp, coverage, adaptive), tmp / "log/verilator.log",
+                "Verilator"}},
+              1);
+  } catch (const StepFailed& failed) {
+    fail_build(failed, tmp / "log", kept_logs);
+  }
   std::vector<Step> compiles;
   for (const fs::path& source : files_in(tmp / "verilated", ".cpp")) {
     const std::string name = source.stem().string();
@@ -305,15 +331,25 @@ void build_model(const fs::path& root, const fs::path& model_dir, const std::str
   std::cout << fmt::format("  verilated in {:.1f} s; compiling its {} files, {} at a time\n",
                            seconds_since(start), compiles.size(), jobs);
   std::cout.flush();
-  run_steps(compiles, jobs);
+  try {
+    run_steps(compiles, jobs);
+  } catch (const StepFailed& failed) {
+    fail_build(failed, tmp / "log", kept_logs);
+  }
+  // Last: a folder with a manifest is complete.
+  std::vector<fs::path> files;
+  for (const char* part : {"verilated", "obj"})
+    for (const fs::path& f : files_under(tmp / part)) files.push_back(f);
+  files.push_back(tmp / "cd_widths.svh");
+  files.push_back(tmp / "inputs.txt");
+  write_manifest(tmp / "manifest", tmp, files);
   std::error_code ec;
   fs::rename(tmp, model_dir, ec);
-  if (ec) {
-    if (!fs::exists(model_dir))
-      throw std::runtime_error(fmt::format("cannot rename {} to {}: {}", tmp.string(),
-                                           model_dir.string(), ec.message()));
-    fs::remove_all(tmp);  // another cdsim finished the same build first
-  }
+  if (ec)
+    throw std::runtime_error(fmt::format("cannot rename {} to {}: {}", tmp.string(),
+                                         model_dir.string(), ec.message()));
+  remove_tmp.release();
+  fs::remove_all(kept_logs, ec);
 }
 
 std::vector<std::string> bench_flags() {
@@ -322,8 +358,10 @@ std::vector<std::string> bench_flags() {
   return flags;
 }
 
-void build_bench(const fs::path& model_dir, const fs::path& library) {
+void build_bench(const fs::path& root, const fs::path& model_dir, const fs::path& library) {
   const fs::path tmp = model_dir / fmt::format("tmp-bench-{}", getpid());
+  const fs::path kept_logs = root / ("failed-" + model_dir.filename().string());
+  RemoveOnExit remove_tmp(tmp);
   fs::remove_all(tmp);
   fs::create_directories(tmp);
   const fs::path object = tmp / "bench_entry.o";
@@ -334,21 +372,31 @@ void build_bench(const fs::path& model_dir, const fs::path& library) {
                                  "-o", object.string()});
   std::cout << "  compiling the bench for this cdsim build\n";
   std::cout.flush();
-  run_steps({{compile, tmp / "bench.log", "compiling the bench (bench_entry.cpp)"}}, 1);
   // No -z defs: the SystemC kernel, the Verilator runtime and the model code
   // are undefined here on purpose and come from cdsim when it loads the object.
   std::vector<std::string> link = {build::kCompiler, "-shared"};
   for (const std::string& f : strings(build::kLinkFlags)) link.push_back(f);
-  link.insert(link.end(), {"-o", (tmp / "bench.so").string(), object.string()});
+  const fs::path built = tmp / library.filename();
+  link.insert(link.end(), {"-o", built.string(), object.string()});
   for (const fs::path& o : files_in(model_dir / "obj", ".o")) link.push_back(o.string());
-  run_steps({{link, tmp / "link.log", "linking the bench"}}, 1);
-  fs::rename(tmp / "bench.so", library);  // atomic; a concurrent build's copy is the same
-  fs::remove_all(tmp);
+  try {
+    run_steps({{compile, tmp / "bench.log", "compiling the bench (bench_entry.cpp)"}}, 1);
+    run_steps({{link, tmp / "link.log", "linking the bench"}}, 1);
+  } catch (const StepFailed& failed) {
+    fail_build(failed, tmp, kept_logs);
+  }
+  // The manifest first: a library without one is never loaded.
+  write_manifest(library.string() + ".manifest", tmp, {built});
+  fs::rename(built, library);  // atomic
   // Benches of older cdsim builds, unused for a week.
   const auto week_ago = fs::file_time_type::clock::now() - std::chrono::hours(24 * 7);
   std::error_code ec;
   for (const fs::path& old : files_in(model_dir, ".so"))
-    if (old != library && fs::last_write_time(old, ec) < week_ago) fs::remove(old, ec);
+    if (old != library && fs::last_write_time(old, ec) < week_ago) {
+      fs::remove(old, ec);
+      fs::remove(old.string() + ".manifest", ec);
+    }
+  fs::remove_all(kept_logs, ec);
 }
 
 RunBench open_bench(const fs::path& library) {
@@ -378,7 +426,11 @@ RunBench open_bench(const fs::path& library) {
 std::string default_rtl_cache_dir() { return cache_root("rtl").string(); }
 
 void run_tool(const std::vector<std::string>& argv, const std::string& log, const std::string& what) {
-  run_steps({{argv, log, what}}, 1);
+  try {
+    run_steps({{argv, log, what}}, 1);
+  } catch (const StepFailed& failed) {
+    throw std::runtime_error(failure_of(failed.step, failed.status, failed.step.log));
+  }
 }
 
 RunBench load_custom_rtl(const Widths& widths, const std::string& cache_dir, CoverageBuild coverage,
@@ -386,7 +438,7 @@ RunBench load_custom_rtl(const Widths& widths, const std::string& cache_dir, Cov
   const std::string header = adaptive ? rtl_header(adaptive_leaf_widths(widths), "custom, adaptive leaf unit")
                                       : rtl_header(widths, "custom");
   const fs::path root = fs::absolute(cache_dir.empty() ? default_rtl_cache_dir() : cache_dir);
-  fs::create_directories(root);
+  check_cache_folder(root, cache_dir.empty() ? "the RTL cache" : "--rtl-cache");
 
   std::string inputs = fmt::format("widths: {}\n{}", describe(widths), model_recipe(coverage, adaptive));
   uint64_t model_key = fnv1a(kCacheVersion);
@@ -406,10 +458,29 @@ RunBench load_custom_rtl(const Widths& widths, const std::string& cache_dir, Cov
       bench_key = fnv1a(read_text_file(entry.path()), fnv1a(entry.path().filename().string(), bench_key));
   const fs::path library = model_dir / fmt::format("bench-{}.so", hex(bench_key));
 
+  CacheEntryLock lock(root / (hex(model_key) + ".lock"),
+                      fmt::format("regress: the RTL for widths {} in {}", describe(widths), model_dir.string()));
   Timings timings = read_timings(root);
   const auto start = std::chrono::steady_clock::now();
+  std::error_code ec;
+  remove_leftovers(root, model_dir);
+  if (fs::exists(library)) {
+    if (const std::string wrong = verify_manifest(library.string() + ".manifest", model_dir); !wrong.empty()) {
+      std::cout << fmt::format("regress: the cached bench {} is corrupt ({}); rebuilding it\n",
+                               library.string(), wrong);
+      fs::remove(library);
+      fs::remove(library.string() + ".manifest", ec);
+    }
+  }
+  // The model's files only matter to a bench still to be linked.
+  if (fs::exists(model_dir) && !fs::exists(library)) {
+    if (const std::string wrong = verify_manifest(model_dir / "manifest", model_dir); !wrong.empty()) {
+      std::cout << fmt::format("regress: the cached RTL in {} is corrupt ({}); rebuilding it\n",
+                               model_dir.string(), wrong);
+      fs::remove_all(model_dir);
+    }
+  }
   if (!fs::exists(model_dir)) {
-    remove_stale(root, "tmp-");
     std::cout << fmt::format(
         "regress: building the RTL{}{} for widths {} in {} (first use; about {:.0f} s)\n",
         adaptive ? " of the adaptive unit" : "",
@@ -421,18 +492,17 @@ RunBench load_custom_rtl(const Widths& widths, const std::string& cache_dir, Cov
     build_model(root, model_dir, header, inputs, coverage, adaptive);
     timings.model = seconds_since(start);
     const auto bench_start = std::chrono::steady_clock::now();
-    build_bench(model_dir, library);
+    build_bench(root, model_dir, library);
     timings.bench = seconds_since(bench_start);
     write_timings(root, timings);
     std::cout << fmt::format("regress: built in {:.0f} s\n", seconds_since(start));
   } else if (!fs::exists(library)) {
-    remove_stale(model_dir, "tmp-bench-");
     std::cout << fmt::format(
         "regress: reusing the RTL verilated for these widths in {}; a new cdsim build needs its "
         "own bench (about {:.0f} s)\n",
         model_dir.string(), timings.bench);
     std::cout.flush();
-    build_bench(model_dir, library);
+    build_bench(root, model_dir, library);
     timings.bench = seconds_since(start);
     write_timings(root, timings);
   } else {

@@ -20,8 +20,10 @@ using RunBench = int (*)(const std::vector<Job>* jobs, const Widths* widths,
 
 // Verilates and compiles the RTL for exactly these widths into cache_dir
 // (empty: default_rtl_cache_dir()) on first use, saying what it does; later
-// calls reuse it. Throws std::runtime_error naming the log when Verilator or
-// the compiler fails.
+// calls reuse it, once its files match the manifests written when it was built
+// (an entry that does not is said, naming it, and rebuilt). Throws
+// std::runtime_error naming the log when Verilator or the compiler fails, and
+// Interrupted (having stopped them) on SIGINT or SIGTERM.
 // A coverage build is verilated with Verilator's coverage points and the user
 // cover points of sim/cover/cd_scan_cover.sv, and cached apart: All has line,
 // branch and toggle points; Lines leaves out toggle points, which makes the
@@ -36,7 +38,7 @@ RunBench load_custom_rtl(const Widths& widths, const std::string& cache_dir,
 // naming `what`, the exit status and the log's first lines when it fails.
 void run_tool(const std::vector<std::string>& argv, const std::string& log, const std::string& what);
 
-// $XDG_CACHE_HOME/cdsim/rtl, else ~/.cache/cdsim/rtl.
+// $XDG_CACHE_HOME/cdsim/rtl, else ~/.cache/cdsim/rtl (cache_files.hpp, cache_root).
 std::string default_rtl_cache_dir();
 
 }  // namespace cdsim::rtl
