@@ -18,8 +18,19 @@
 #include <sstream>
 #include <thread>
 
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <memory>
+
 #include "build_info.hpp"
 #include "cache_files.hpp"
+#include "child_process.hpp"
+#include "common.hpp"
 #include "derived_widths.hpp"
 #include "interrupt.hpp"
 #include "progress.hpp"
@@ -133,10 +144,23 @@ double liberty_cell_area(const std::string& liberty, const std::string& cell) {
 
 }  // namespace
 
-int run_yosys(const fs::path& script, const fs::path& log) {
-  const std::string command =
-      fmt::format("yosys -q -l '{}' -s '{}' > /dev/null 2>&1", log.string(), script.string());
-  return std::system(command.c_str());
+void run_yosys(const std::vector<YosysRun>& runs) {
+  std::vector<std::unique_ptr<ChildProcess>> children;
+  for (const YosysRun& run : runs)
+    children.push_back(std::make_unique<ChildProcess>(
+        std::vector<std::string>{"yosys", "-q", "-l", run.log.string(), "-s", run.script.string()},
+        "/dev/null"));
+  std::vector<int> statuses(runs.size(), -1);
+  for (size_t left = runs.size(); left > 0;) {
+    throw_if_interrupted();  // the destructors stop the groups
+    for (size_t i = 0; i < runs.size(); ++i)
+      if (statuses[i] == -1 && children[i]->finished(statuses[i])) --left;
+    if (left > 0) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  for (size_t i = 0; i < runs.size(); ++i)
+    if (!(WIFEXITED(statuses[i]) && WEXITSTATUS(statuses[i]) == 0))
+      throw std::runtime_error(fmt::format("yosys failed {}: {} ({}, {})", runs[i].what, yosys_error(runs[i].log),
+                                           describe_status(statuses[i]), runs[i].log.string()));
 }
 
 std::string yosys_error(const fs::path& log) {
@@ -195,7 +219,6 @@ UnitConfig prepare_unit(const Design& design, const Widths& widths, const AreaOp
   // The top's RTL sources (those the simulations verilate), in name order, so
   // that the hash is stable and a change to the other unit's files keeps
   // this one's syntheses.
-  const fs::path rtl_dir = kRtlDir;
   const std::vector<fs::path> sources = rtl_sources_of(c.top);
   c.header = c.top == kAdaptiveUnitTop ? rtl_header(adaptive_leaf_widths(widths), "area, adaptive leaf unit")
                                       : rtl_header(widths, "area");
@@ -205,33 +228,133 @@ UnitConfig prepare_unit(const Design& design, const Widths& widths, const AreaOp
   for (const fs::path& source : sources) hash = fnv1a(read_text_file(source), hash);
 
   const fs::path cache = options.cache_dir.empty() ? cache_root("area") : fs::path(options.cache_dir);
-  c.dir = cache / fmt::format("{:016x}", hash);
-  fs::create_directories(c.dir);
+  check_cache_folder(cache, options.cache_dir.empty() ? "the area cache" : "--cache");
+  c.dir = fs::absolute(cache) / fmt::format("{:016x}", hash);
   c.sram_depth = c.has_table ? (int64_t{widths.table_depth} << log2_ceil(design.density)) * widths.table_banks : 0;
   c.word_bits = unit_word_bits(derived, design.persp);
   c.flop_lines = std::min<int64_t>(c.sram_depth, 64);  // 0: no table
-
-  std::string unit_sources;
   for (const fs::path& source : sources)
-    if (source.filename() != "scanline_table.sv") unit_sources += " " + source.string();
-  const std::string include = fmt::format("-I{} -I{}", c.dir.string(), rtl_dir.string());
-  // The unit, with the scanline table as a black box (it is SRAM).
-  c.unit_front = fmt::format(
+    if (source.filename() != "scanline_table.sv") c.unit_sources += " " + source.string();
+  c.parameters = parameters;
+  return c;
+}
+
+std::string UnitConfig::unit_front(const fs::path& include) const {
+  const std::string rtl_dir = kRtlDir;
+  return fmt::format(
       "read_verilog -sv -DSYNTHESIS {inc}{src}\n"
       "read_verilog -sv -lib {inc} {rtl}/scanline_table.sv\n"
       "chparam {p} {top}\n"
       "hierarchy -check -top {top}\n",
-      fmt::arg("inc", include), fmt::arg("src", unit_sources), fmt::arg("rtl", rtl_dir.string()),
-      fmt::arg("p", parameters), fmt::arg("top", c.top));
-  // The same table from flip-flops, synthesised at up to 64 lines.
-  c.table_front = fmt::format(
+      fmt::arg("inc", fmt::format("-I{} -I{}", include.string(), rtl_dir)), fmt::arg("src", unit_sources),
+      fmt::arg("rtl", rtl_dir), fmt::arg("p", parameters), fmt::arg("top", top));
+}
+
+std::string UnitConfig::table_front(const fs::path& include) const {
+  const std::string rtl_dir = kRtlDir;
+  return fmt::format(
       "read_verilog -sv {inc} {rtl}/scanline_table.sv\n"
       "chparam -set Depth {d} -set WordBits {w} scanline_table\n"
       "hierarchy -check -top scanline_table\n",
-      fmt::arg("inc", include), fmt::arg("rtl", rtl_dir.string()), fmt::arg("d", c.flop_lines),
-      fmt::arg("w", c.word_bits));
-  if (!fs::exists(c.dir / "cd_widths.svh")) write_file_atomic(c.dir / "cd_widths.svh", c.header);
-  return c;
+      fmt::arg("inc", fmt::format("-I{} -I{}", include.string(), rtl_dir)), fmt::arg("rtl", rtl_dir),
+      fmt::arg("d", flop_lines), fmt::arg("w", word_bits));
+}
+
+EntryLock::EntryLock(const UnitConfig& config, const std::string& what)
+    : lock_(config.dir.string() + ".lock", what) {}
+
+std::optional<nlohmann::json> cached_result(const UnitConfig& config, const std::string& name,
+                                            const std::function<std::string(const nlohmann::json&)>& check) {
+  const fs::path path = config.dir / name;
+  const fs::path manifest = config.dir / (name + ".manifest");
+  std::error_code ec;
+  if (!fs::exists(path, ec) && !fs::exists(manifest, ec)) return std::nullopt;
+  std::string wrong = fs::exists(manifest, ec) ? verify_manifest(manifest, config.dir)
+                                              : "no manifest: built by an older cdsim";
+  nlohmann::json j;
+  if (wrong.empty()) {
+    try {
+      j = nlohmann::json::parse(read_text_file(path));
+      wrong = check(j);
+    } catch (const std::exception& e) {
+      wrong = e.what();
+    }
+  }
+  if (wrong.empty()) return j;
+  std::cerr << fmt::format("area: the cached {} is corrupt ({}); building it again\n", path.string(), wrong);
+  fs::remove(path, ec);
+  fs::remove(manifest, ec);
+  return std::nullopt;
+}
+
+void build_result(const UnitConfig& config, const std::string& name,
+                  const std::function<void(const fs::path& work)>& build) {
+  static std::atomic<unsigned> counter{0};
+  const fs::path cache = config.dir.parent_path();
+  const std::string key = config.dir.filename().string();
+  std::error_code ec;
+  // Work folders of this entry that a killed cdsim left (no one else builds
+  // it: the caller holds its lock).
+  for (const auto& entry : fs::directory_iterator(cache, ec))
+    if (entry.path().filename().string().rfind("tmp-" + key + "-", 0) == 0) fs::remove_all(entry.path(), ec);
+  const fs::path work = cache / fmt::format("tmp-{}-{}-{}", key, ::getpid(), counter++);
+  RemoveOnExit remove_work(work);
+  fs::create_directory(work);
+  write_file_atomic(work / "cd_widths.svh", config.header);
+  try {
+    build(work);
+  } catch (const Interrupted&) {
+    throw;
+  } catch (const std::exception& e) {
+    // The logs outlive the work folder, for the message to name them.
+    const fs::path kept = cache / ("failed-" + key);
+    fs::remove_all(kept, ec);
+    fs::create_directory(kept, ec);
+    for (const auto& entry : fs::directory_iterator(work, ec))
+      if (entry.path().extension() == ".log" || entry.path().extension() == ".ys")
+        fs::copy_file(entry.path(), kept / entry.path().filename(), ec);
+    std::string message = e.what();
+    for (size_t at; (at = message.find(work.string())) != std::string::npos;)
+      message.replace(at, work.string().size(), kept.string());
+    throw std::runtime_error(message);
+  }
+  if (::mkdir(config.dir.c_str(), 0700) != 0 && errno != EEXIST)
+    throw std::runtime_error(fmt::format("{}: cannot create the cache entry: {}", config.dir.string(), std::strerror(errno)));
+  for (const auto& entry : fs::directory_iterator(work))
+    if (entry.path().filename() != name) fs::rename(entry.path(), config.dir / entry.path().filename());
+  // The manifest before the result: a result without one is never used.
+  const std::string manifest = config.dir / (name + ".manifest");
+  write_manifest(work / "manifest", work, {work / name});
+  fs::rename(work / "manifest", manifest);
+  fs::rename(work / name, config.dir / name);
+  fs::remove_all(cache / ("failed-" + key), ec);
+}
+
+namespace {
+
+std::string finite_non_negative(const nlohmann::json& j, const char* key) {
+  if (!j.contains(key)) return fmt::format("no '{}'", key);
+  const nlohmann::json& v = j.at(key);
+  if (!v.is_number()) return fmt::format("'{}' is not a number", key);
+  const double x = v.get<double>();
+  if (!std::isfinite(x) || x < 0) return fmt::format("'{}' is {}, not a finite number >= 0", key, v.dump());
+  return "";
+}
+
+}  // namespace
+
+std::string check_synthesis(const nlohmann::json& j) {
+  if (!j.is_object()) return "not a JSON object";
+  for (const char* key : {"seconds", "flop_table_lines", "flop_table_area_um2"})
+    if (std::string wrong = finite_non_negative(j, key); !wrong.empty()) return wrong;
+  if (!j.contains("blocks") || !j.at("blocks").is_array()) return "'blocks' is not a list";
+  for (const nlohmann::json& b : j.at("blocks")) {
+    if (!b.is_object() || !b.contains("name") || !b.at("name").is_string()) return "a block without a name";
+    for (const char* key : {"area_um2", "flops"})
+      if (std::string wrong = finite_non_negative(b, key); !wrong.empty())
+        return fmt::format("block '{}': {}", b.at("name").get<std::string>(), wrong);
+  }
+  return "";
 }
 
 nlohmann::json block_areas(const std::map<std::string, ModuleStat>& unit, const UnitConfig& config,
@@ -331,16 +454,12 @@ AreaReport synthesise_area(const Design& design, const Widths& widths, const Are
     std::cerr << fmt::format("area: {}: the component model does not cover its unit; synthesising it\n",
                              design.name);
   const UnitConfig config = prepare_unit(design, widths, options);
-  const fs::path& dir = config.dir;
-  const fs::path result_path = dir / "result.json";
-  nlohmann::json synthesised;
-  bool cached = false;
-  if (fs::exists(result_path)) {
-    synthesised = nlohmann::json::parse(read_text_file(result_path));
-    cached = true;
-  } else {
+  const EntryLock lock(config, fmt::format("area: {} at {}", design.name, describe(widths)));
+  std::optional<nlohmann::json> synthesised = cached_result(config, "result.json", check_synthesis);
+  const bool cached = synthesised.has_value();
+  if (!cached) build_result(config, "result.json", [&](const fs::path& work) {
     const std::string& L = options.liberty;
-    write_file_atomic(dir / "unit.ys", config.unit_front + fmt::format(
+    write_file_atomic(work / "unit.ys", config.unit_front(work) + fmt::format(
         "proc\n"
         "select -assert-none t:$dlatch t:$adlatch t:$dlatchsr t:$sr\n"
         "opt -fast\n"
@@ -349,41 +468,36 @@ AreaReport synthesise_area(const Design& design, const Widths& widths, const Are
         "dfflibmap -liberty {L}\nabc -fast -liberty {L}\nopt_clean\n"
         "select -assert-none t:$* t:$paramod* %d\n"
         "stat -liberty {L}\n", fmt::arg("L", L)));
-    write_file_atomic(dir / "table.ys", config.table_front + fmt::format(
+    write_file_atomic(work / "table.ys", config.table_front(work) + fmt::format(
         "proc\nopt -fast\nmemory\nopt -fast\ntechmap\n"
         "dfflibmap -liberty {L}\nabc -fast -liberty {L}\nopt_clean\n"
         "select -assert-none t:$* t:$paramod* %d\n"
         "stat -liberty {L}\n", fmt::arg("L", L)));
 
     if (!options.quiet)
-      std::cerr << fmt::format("area: synthesising {} with yosys onto {} (log {})\n", design.name,
-                               fs::path(L).filename().string(), (dir / "unit.log").string());
+      std::cerr << fmt::format("area: synthesising {} with yosys onto {} (entry {})\n", design.name,
+                               fs::path(L).filename().string(), config.dir.string());
     const auto start = std::chrono::steady_clock::now();
-    int unit_status = 0, table_status = 0;
-    std::thread table([&] {
-      if (config.has_table) table_status = run_yosys(dir / "table.ys", dir / "table.log");
-    });
-    unit_status = run_yosys(dir / "unit.ys", dir / "unit.log");
-    table.join();
+    std::vector<YosysRun> runs = {{work / "unit.ys", work / "unit.log", "on the unit"}};
+    if (config.has_table) runs.push_back({work / "table.ys", work / "table.log", "on the flip-flop table"});
+    run_yosys(runs);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (unit_status != 0)
-      throw std::runtime_error(fmt::format("yosys failed on the unit: {} ({})",
-                                           yosys_error(dir / "unit.log"), (dir / "unit.log").string()));
-    if (table_status != 0)
-      throw std::runtime_error(fmt::format("yosys failed on the flip-flop table: {} ({})",
-                                           yosys_error(dir / "table.log"), (dir / "table.log").string()));
-    const auto unit = parse_stat(read_text_file(dir / "unit.log"));
-    synthesised = {
+    const auto unit = parse_stat(read_text_file(work / "unit.log"));
+    const nlohmann::json result = {
         {"seconds", seconds},
-        {"blocks", block_areas(unit, config, (dir / "unit.log").string())},
+        {"blocks", block_areas(unit, config, (work / "unit.log").string())},
         {"flop_table_lines", config.flop_lines},
         {"flop_table_area_um2",
-         config.has_table ? table_area(parse_stat(read_text_file(dir / "table.log"))) : 0.0},
+         config.has_table ? table_area(parse_stat(read_text_file(work / "table.log"))) : 0.0},
     };
-    write_file_atomic(result_path, synthesised.dump(2) + "\n");
-  }
-  AreaReport report = area_report(design, widths, config, synthesised, options);
+    if (const std::string wrong = check_synthesis(result); !wrong.empty())
+      throw std::runtime_error(fmt::format("area: the synthesis makes no sense ({}); log {}", wrong,
+                                           (work / "unit.log").string()));
+    write_file_atomic(work / "result.json", result.dump(2) + "\n");
+  });
+  if (!synthesised) synthesised = nlohmann::json::parse(read_text_file(config.dir / "result.json"));
+  AreaReport report = area_report(design, widths, config, *synthesised, options);
   report.cached = cached;
   return report;
 }
@@ -504,6 +618,11 @@ CLI::App* add_area_command(CLI::App& app, AreaOptions& options) {
 }
 
 int run_area_command(const AreaOptions& options) {
+  if (!options.json_path.empty()) {
+    check_output_folder("--json", options.json_path);
+    check_distinct_files({{"--json", options.json_path}},
+                         {{"--liberty", options.liberty}, {"--model-file", options.model_path}});
+  }
   Widths widths;
   for (const std::string& s : options.settings) apply_setting(widths, s);
   const Design& design = find_design(options.design);

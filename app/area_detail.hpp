@@ -7,11 +7,14 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "area.hpp"
+#include "cache_files.hpp"
 
 namespace cdsim::area_detail {
 
@@ -26,17 +29,50 @@ struct ModuleStat {
 
 // One design at one set of widths, as Yosys is given it.
 struct UnitConfig {
-  std::filesystem::path dir;      // its cache folder (hash of RTL, widths, design and flow)
+  std::filesystem::path dir;      // its cache entry (hash of RTL, widths, design and flow)
   std::string top;                // cd_scan_unit, or adaptive_unit (model/design.hpp, RtlTop)
   std::string header;             // cd_widths.svh
-  std::string unit_front;         // read, chparam and hierarchy of the unit (table a black box)
-  std::string table_front;        // the same for the flip-flop table
+  std::string unit_sources;       // the unit's RTL files but the table, space-separated
+  std::string parameters;         // chparam's -set options
   std::string reciprocal_owner;   // the module whose reciprocal is reported apart ("": none)
   bool has_table = false;
   int64_t sram_depth = 0;         // table lines, density included
   int64_t flop_lines = 0;         // lines of the synthesised flip-flop table (0: no table)
   int word_bits = 0;
+
+  // Yosys's read, chparam and hierarchy of the unit (the table a black box),
+  // and of the flip-flop table, with cd_widths.svh taken from `include`: the
+  // work folder that builds a result of the entry.
+  std::string unit_front(const std::filesystem::path& include) const;
+  std::string table_front(const std::filesystem::path& include) const;
 };
+
+// A cache entry's results (result.json, inventory.json), built under the
+// entry's lock (<cache>/<hash>.lock: another cdsim waits instead of building
+// it twice) and checked before use.
+class EntryLock {
+ public:
+  EntryLock(const UnitConfig& config, const std::string& what);
+
+ private:
+  CacheEntryLock lock_;
+};
+// The result `name` of the entry, if its manifest vouches for it and `check`
+// finds nothing wrong ("" = fine). Otherwise, when the file is there, says on
+// stderr that it is corrupt, naming the file and what is wrong, removes it,
+// and returns nothing, as for a result not yet built.
+std::optional<nlohmann::json> cached_result(const UnitConfig& config, const std::string& name,
+                                            const std::function<std::string(const nlohmann::json&)>& check);
+// Builds the result `name` in a work folder of its own (<cache>/tmp-<hash>-*)
+// that holds cd_widths.svh: build(work) writes name there, with its scripts
+// and logs. Then they move into the entry, the result last, with its
+// manifest. A failure or an interrupt removes the work folder; a failure keeps
+// the logs in <cache>/failed-<hash>/ and names them.
+void build_result(const UnitConfig& config, const std::string& name,
+                  const std::function<void(const std::filesystem::path& work)>& build);
+// "" when a cached synthesis (result.json) makes sense: finite areas and
+// seconds, no negative area or count.
+std::string check_synthesis(const nlohmann::json& synthesised);
 
 // The RTL sources of a top ("cd_scan_unit" or "adaptive_unit"), as the
 // simulations verilate them (named in cmake/rtl_sources.cmake), in name order.
@@ -52,7 +88,15 @@ double table_area(const std::map<std::string, ModuleStat>& table);
 // The report from cached block areas: SRAM, flop table scaled to full depth, totals.
 AreaReport area_report(const Design& design, const Widths& widths, const UnitConfig& config,
                        const nlohmann::json& synthesised, const AreaOptions& options);
-int run_yosys(const std::filesystem::path& script, const std::filesystem::path& log);
+// Runs Yosys on each script at once (-q -l log -s script), each in a process
+// group of its own (model/child_process.hpp); SIGINT or SIGTERM stops them
+// and throws Interrupted. Throws "yosys failed WHAT: ERROR (LOG)" for the
+// first that fails.
+struct YosysRun {
+  std::filesystem::path script, log;
+  std::string what;  // "on the unit"
+};
+void run_yosys(const std::vector<YosysRun>& runs);
 std::string yosys_error(const std::filesystem::path& log);
 
 }  // namespace cdsim::area_detail

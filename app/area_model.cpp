@@ -166,41 +166,43 @@ struct CoarseResult {
 // The elaborated netlist of the unit (and flip-flop table), cached in the
 // configuration's folder beside the full synthesis.
 CoarseResult coarse_pass(const UnitConfig& config) {
-  const fs::path path = config.dir / "inventory.json";
-  if (fs::exists(path)) {
-    const nlohmann::json j = nlohmann::json::parse(read_text_file(path));
-    if (j.value("flow", "") == kCoarseFlow)
-      return {inventory_of(j.at("unit")), inventory_of(j.at("table")), j.at("seconds").get<double>()};
-  }
-  static const char* kElaborate = "proc\nopt -fast\nwreduce\nopt -fast\n";
-  const auto start = std::chrono::steady_clock::now();
-  write_file_atomic(config.dir / "coarse_unit.ys",
-                    config.unit_front + kElaborate + "memory -nomap\nopt_clean\n" +
-                        fmt::format("write_json {}\n", (config.dir / "coarse_unit.json").string()));
-  const auto run = [&](const std::string& what) {
-    const fs::path log = config.dir / ("coarse_" + what + ".log");
-    if (run_yosys(config.dir / ("coarse_" + what + ".ys"), log) != 0)
-      throw std::runtime_error(fmt::format("yosys failed elaborating the {}: {} ({})", what,
-                                           yosys_error(log), log.string()));
-    const fs::path json = config.dir / ("coarse_" + what + ".json");
-    Inventory inv = inventory_from_yosys_json(nlohmann::json::parse(read_text_file(json)));
-    fs::remove(json);  // megabytes; the inventory keeps what the model needs
-    return inv;
-  };
+  const EntryLock lock(config, fmt::format("area: the elaboration in {}", config.dir.string()));
   CoarseResult r;
-  r.unit = run("unit");
-  if (config.has_table) {
-    write_file_atomic(config.dir / "coarse_table.ys",
-                      config.table_front + kElaborate + "memory\nopt -fast\nopt_clean\n" +
-                          fmt::format("write_json {}\n", (config.dir / "coarse_table.json").string()));
-    r.table = run("table");
-  }
-  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  write_file_atomic(path, nlohmann::json{{"flow", kCoarseFlow},
-                                         {"seconds", r.seconds},
-                                         {"unit", inventory_json(r.unit)},
-                                         {"table", inventory_json(r.table)}}
-                              .dump() + "\n");
+  const auto check = [&](const nlohmann::json& j) -> std::string {
+    if (!j.is_object() || j.value("flow", "") != kCoarseFlow) return fmt::format("not of flow {}", kCoarseFlow);
+    const double seconds = j.at("seconds").get<double>();
+    if (!std::isfinite(seconds) || seconds < 0) return fmt::format("'seconds' is {}", seconds);
+    r = {inventory_of(j.at("unit")), inventory_of(j.at("table")), seconds};
+    for (const Inventory* inv : {&r.unit, &r.table})
+      for (const auto& [name, m] : *inv) {
+        if (m.flops < 0) return fmt::format("module {}: {} flip-flops", name, m.flops);
+        for (const double f : m.features)
+          if (!std::isfinite(f) || f < 0) return fmt::format("module {}: a feature is {}", name, f);
+      }
+    return "";
+  };
+  if (cached_result(config, "inventory.json", check)) return r;
+  build_result(config, "inventory.json", [&](const fs::path& work) {
+    static const char* kElaborate = "proc\nopt -fast\nwreduce\nopt -fast\n";
+    const auto start = std::chrono::steady_clock::now();
+    const auto run = [&](const std::string& what, const std::string& script) {
+      const fs::path json = work / ("coarse_" + what + ".json");
+      write_file_atomic(work / ("coarse_" + what + ".ys"), script + fmt::format("write_json {}\n", json.string()));
+      run_yosys({{work / ("coarse_" + what + ".ys"), work / ("coarse_" + what + ".log"), "elaborating the " + what}});
+      Inventory inv = inventory_from_yosys_json(nlohmann::json::parse(read_text_file(json)));
+      fs::remove(json);  // megabytes; the inventory keeps what the model needs
+      return inv;
+    };
+    r = {};
+    r.unit = run("unit", config.unit_front(work) + kElaborate + "memory -nomap\nopt_clean\n");
+    if (config.has_table) r.table = run("table", config.table_front(work) + kElaborate + "memory\nopt -fast\nopt_clean\n");
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    write_file_atomic(work / "inventory.json", nlohmann::json{{"flow", kCoarseFlow},
+                                                              {"seconds", r.seconds},
+                                                              {"unit", inventory_json(r.unit)},
+                                                              {"table", inventory_json(r.table)}}
+                                                   .dump() + "\n");
+  });
   return r;
 }
 
@@ -516,6 +518,13 @@ int run_area_model_command(const AreaModelOptions& options) {
   const std::string write_path = options.write_path.empty() ? default_area_model_path() : options.write_path;
   check_output_folder("--write", write_path);
   if (!options.json_path.empty()) check_output_folder("--json", options.json_path);
+  // The archive is read and rewritten: an output of its own, not an input.
+  check_distinct_files({{"--write", write_path},
+                        {"--json", options.json_path},
+                        {"--archive", options.no_archive ? std::string()
+                                      : options.archive_path.empty() ? default_area_archive_path()
+                                                                     : options.archive_path}},
+                       {{"--liberty", options.area.liberty}});
   std::vector<CalibrationConfig> configs;
   // Round robin over the designs, so that an interrupted calibration has them all.
   for (int i = 0; i < options.configs; ++i)
