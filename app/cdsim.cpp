@@ -62,6 +62,8 @@ int run_command(const CommonOptions& options, const std::string& json_path, bool
   const std::vector<Design> designs = designs_from(options.designs);
   if (!json_path.empty()) check_output_folder("--json", json_path);
   if (!dump_path.empty()) check_output_folder("--dump", dump_path);
+  check_distinct_files({{"--json", json_path}, {"--dump", dump_path}},
+                       {{"--scene", scene_input_file(options.scene)}});
   const PreparedScene scene = prepare(load_scene(options.scene, options.scene_options), widths);
   std::cout << provenance(scene.scene, widths) << std::endl;  // before the long part
   std::vector<DesignResult> results;
@@ -130,6 +132,7 @@ int bench_command(const CommonOptions& options, double seconds) {
 int widths_command(const CommonOptions& options, const std::string& sv_path) {
   const Widths widths = widths_from(options);
   if (!sv_path.empty()) {
+    if (sv_path != "-") check_output_folder("--sv", sv_path);
     const std::string text = rtl_header(widths, "custom");
     if (sv_path == "-") {
       std::cout << text;
@@ -143,6 +146,32 @@ int widths_command(const CommonOptions& options, const std::string& sv_path) {
   for (const auto& p : param_table())
     fmt::print("{:<18} {:>7} {:>7} {:>7}  {}\n", p.name, widths.*(p.field), p.min_value,
                p.max_value, p.meaning);
+  // A range of widths.def that the other parameters narrow (validate's
+  // checks across parameters), with the reason at the first value refused.
+  std::string narrower;
+  for (const auto& p : param_table()) {
+    const int value = widths.*(p.field);
+    const auto refusal = [&](int v) -> std::string {
+      Widths trial = widths;
+      trial.*(p.field) = v;
+      try {
+        validate(trial);
+        return "";
+      } catch (const std::invalid_argument& e) {
+        return e.what();
+      }
+    };
+    int lo = value, hi = value;
+    std::string below, above;
+    while (lo > p.min_value && (below = refusal(lo - 1)).empty()) --lo;
+    while (hi < p.max_value && (above = refusal(hi + 1)).empty()) ++hi;
+    if (lo > p.min_value)
+      narrower += fmt::format("  {} at least {} here, not {}: {}={}: {}\n", p.name, lo, p.min_value, p.name, lo - 1, below);
+    if (hi < p.max_value)
+      narrower += fmt::format("  {} at most {} here, not {}: {}={}: {}\n", p.name, hi, p.max_value, p.name, hi + 1, above);
+  }
+  if (!narrower.empty())
+    fmt::print("\nranges that the other parameters' values narrow (--set them to widen):\n{}", narrower);
   const DerivedWidths derived = derive(widths);
   fmt::print("\n{:<24} {:>7}  {}\n", "derived (RTL)", "value", "meaning");
   for (const auto& p : derived_table())

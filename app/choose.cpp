@@ -120,6 +120,9 @@ int run_choose_command(const ChooseOptions& options) {
   if (!options.json_path.empty()) check_output_folder("--json", options.json_path);
   const std::vector<std::string> scene_names =
       options.scenes.empty() ? std::vector<std::string>{"default"} : options.scenes;
+  std::vector<NamedFile> inputs;
+  for (const std::string& name : scene_names) inputs.push_back({"SCENE", scene_input_file(name)});
+  check_distinct_files({{"--json", options.json_path}}, inputs);
   std::vector<PreparedScene> scenes;
   for (const std::string& name : scene_names)
     scenes.push_back(prepare(load_scene(name, options.scene_options), user));

@@ -275,6 +275,9 @@ int run_sweep_command(const SweepOptions& options) {
 
   // The folder is locked before the long part, so that a second sweep into it stops at once.
   create_output_folder(options.out);
+  check_distinct_files({{"--out", std::filesystem::path(options.out) / "sweep.csv"},
+                        {"--out", std::filesystem::path(options.out) / "sweep.json"}},
+                       {{"--scene", scene_input_file(options.common.scene)}, {"--file", options.file}});
   const OutputFolderLock lock(options.out);
 
   const Scene scene = load_scene(options.common.scene, options.common.scene_options);
@@ -444,6 +447,9 @@ int merge_regressions(const MergeOptions& options) {
   merged["failed_triangles"] = failed;
   merged["shards"] = count;
   check_output_folder("--out", options.out);
+  std::vector<NamedFile> inputs;
+  for (const std::string& file : options.shards) inputs.push_back({"shard", file});
+  check_distinct_files({{"--out", options.out}}, inputs);
   write_file_atomic(options.out, merged.dump(2) + "\n");
   const int64_t bad = merged["mismatches"].get<int64_t>() + merged["hangs"].get<int64_t>();
   fmt::print("merged {} regression shards: {} triangles, {} fragments compared, {} mismatches, {} hangs, RTL "
@@ -538,6 +544,11 @@ int run_merge_command(const MergeOptions& options) {
     csv += *csv_rows[g] + '\n';
   }
   create_output_folder(options.out);
+  std::vector<NamedFile> inputs;
+  for (const std::string& folder : options.shards)
+    for (const char* name : {"sweep.csv", "sweep.json"}) inputs.push_back({"shard", fs::path(folder) / name});
+  check_distinct_files({{"--out", fs::path(options.out) / "sweep.csv"}, {"--out", fs::path(options.out) / "sweep.json"}},
+                       inputs);
   const OutputFolderLock lock(options.out);
   const std::string csv_path = (fs::path(options.out) / "sweep.csv").string();
   const std::string json_path = (fs::path(options.out) / "sweep.json").string();

@@ -53,6 +53,7 @@ struct BenchOptions {
   // cycles its fragments are offered: a replay sees the same refusals.
   double backpressure = 0.0;
   std::string trace;          // FST waveform of the whole run, if not empty
+  std::string trace_name;     // the name it is given when the run ends (regress renames it)
   std::string coverage;       // Verilator coverage data of the run, if not empty (a coverage build)
   // Per job: cycles without its record (counted from the last record) before a hang is reported
   // (regress.cpp, hang_cycle_limit: scaled by the model's cycles and the back-pressure).
@@ -375,7 +376,7 @@ int run_bench(const std::vector<Job>& jobs, const Widths& widths, const BenchOpt
     // Re-run the failing triangle with the waveform on.
     const size_t index = bench.failed_index();
     const std::string path =
-        options.trace.empty() ? fmt::format("regress_fail_triangle{}.fst", index) : options.trace;
+        options.trace.empty() ? fmt::format("regress_fail_triangle{}.fst", index) : options.trace_name;
     if (options.trace.empty()) trace->open(path.c_str());
     bench.replay(index);
     sc_core::sc_start();
@@ -384,7 +385,7 @@ int run_bench(const std::vector<Job>& jobs, const Widths& widths, const BenchOpt
                              path);
   } else {
     trace->close();
-    if (!options.trace.empty()) std::cout << fmt::format("waveform: {}\n", options.trace);
+    if (!options.trace.empty()) std::cout << fmt::format("waveform: {}\n", options.trace_name);
   }
   if (!options.coverage.empty()) Verilated::threadContextp()->coveragep()->write(options.coverage.c_str());
   std::cout << scoreboard.flag_census() << '\n';

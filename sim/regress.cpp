@@ -162,6 +162,9 @@ void check_output_path(const std::string& option, const std::string& path) {
   if (!folder.empty() && !fs::is_directory(folder, ignored))
     throw std::invalid_argument(fmt::format("{} {}: the folder {} does not exist", option, path, folder.string()));
   if (fs::is_directory(path, ignored)) throw std::invalid_argument(fmt::format("{} {}: is a folder", option, path));
+  // The waveform is written by the FST library, which seeks and renames:
+  // it goes beside and is renamed over, so only a regular file can take it.
+  if (option == "--trace") check_regular_output(option, path);
   if (::access(folder.empty() ? "." : folder.c_str(), W_OK) != 0)
     throw std::invalid_argument(fmt::format("{} {}: cannot write into {}: {}", option, path,
                                             folder.empty() ? "." : folder.string(), std::strerror(errno)));
@@ -225,6 +228,14 @@ int regress(const Widths* given) {
   validate(widths);
   check_output_path("--trace", options.trace);
   check_output_path("--json", options.json_path);
+  {
+    std::vector<NamedFile> inputs;
+    std::vector<std::string> scenes = {options.scene};
+    scenes.insert(scenes.end(), options.more_scenes.begin(), options.more_scenes.end());
+    if (options.random == 0 || options.scene_and_random)
+      for (const std::string& scene : scenes) inputs.push_back({"--scene", scene_input_file(scene)});
+    check_distinct_files({{"--trace", options.trace}, {"--json", options.json_path}}, inputs);
+  }
   const bool exact = given || !options.settings.empty();
   const std::string builtin = exact ? builtin_config_of(widths) : options.widths;
   std::string label = given ? "as sized" : options.widths;
@@ -258,7 +269,13 @@ int regress(const Widths* given) {
   BenchOptions bench_options;
   bench_options.seed = options.seed;
   bench_options.backpressure = options.backpressure;
-  bench_options.trace = options.trace;
+  // Written beside and renamed into place at the end, as --json is: an
+  // interrupted run leaves no partial waveform, a device is never replaced.
+  const std::filesystem::path trace_temporary =
+      options.trace.empty() ? std::filesystem::path() : temporary_beside(options.trace);
+  RemoveOnExit remove_trace(trace_temporary);
+  bench_options.trace = trace_temporary.string();
+  bench_options.trace_name = options.trace;
   bench_options.cycle_limits = hang_limits(jobs, widths, options.backpressure);
   BenchSummary summary;
   bench_options.summary = &summary;
@@ -312,8 +329,12 @@ int regress(const Widths* given) {
   if (drawn && !ended)  // a run that stopped early ends its bar too
     progress.update(static_cast<size_t>(std::max<int64_t>(0, summary.triangles)),
                     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), true);
-  if (!options.trace.empty() && !std::filesystem::exists(options.trace))
-    throw std::runtime_error(fmt::format("--trace {}: the waveform was not written", options.trace));
+  if (!options.trace.empty()) {
+    if (!std::filesystem::exists(trace_temporary))
+      throw std::runtime_error(fmt::format("--trace {}: the waveform was not written", options.trace));
+    publish_file(trace_temporary, options.trace);
+    remove_trace.release();
+  }
   if (coverage) {
     std::cout << fmt::format("coverage data: {}\n", bench_options.coverage);
     report_coverage(options.coverage_dir);
