@@ -15,8 +15,14 @@
 #include <random>
 #include <vector>
 
+#include "area_detail.hpp"
 #include "area_model.hpp"
+#include "cache_files.hpp"
 #include "widths.hpp"
+
+#include <unistd.h>
+
+#include <filesystem>
 
 namespace {
 
@@ -230,3 +236,66 @@ TEST(AreaModel, RandomWidthsAreValidInRangeAndReproducible) {
 }
 
 }  // namespace
+
+// The area cache (app/area.cpp): a result that its manifest does not vouch
+// for, or that makes no sense (a negative area), is said to be corrupt,
+// naming the file, and built again; never printed.
+TEST(AreaCache, ACorruptOrNonsensicalResultIsNamedAndNotUsed) {
+  namespace fs = std::filesystem;
+  namespace ad = cdsim::area_detail;
+  const nlohmann::json good = {{"seconds", 3.5},
+                               {"blocks", {{{"name", "control"}, {"area_um2", 120.0}, {"flops", 4}}}},
+                               {"flop_table_lines", 0},
+                               {"flop_table_area_um2", 0.0}};
+  EXPECT_EQ(ad::check_synthesis(good), "");
+  nlohmann::json negative = good;
+  negative["blocks"][0]["area_um2"] = -5.0;
+  EXPECT_EQ(ad::check_synthesis(negative), "block 'control': 'area_um2' is -5.0, not a finite number >= 0");
+  nlohmann::json missing = good;
+  missing.erase("seconds");
+  EXPECT_EQ(ad::check_synthesis(missing), "no 'seconds'");
+
+  const fs::path cache = fs::temp_directory_path() / ("cdsim_area_cache_test_" + std::to_string(::getpid()));
+  fs::remove_all(cache);
+  ad::UnitConfig config;
+  config.dir = cache / "0123456789abcdef";
+  config.header = "// header\n";
+  fs::create_directories(cache);
+  int built = 0;
+  const auto build = [&](const nlohmann::json& result) {
+    ad::build_result(config, "result.json", [&](const fs::path& work) {
+      ++built;
+      cdsim::write_file_atomic(work / "unit.log", "log\n");
+      cdsim::write_file_atomic(work / "result.json", result.dump());
+    });
+  };
+  build(good);
+  EXPECT_EQ(ad::cached_result(config, "result.json", ad::check_synthesis), good);
+  // Only the entry and its lock-free files: the work folder is gone.
+  for (const auto& entry : fs::directory_iterator(cache)) EXPECT_EQ(entry.path(), config.dir);
+
+  testing::internal::CaptureStderr();
+  cdsim::write_file_atomic(config.dir / "result.json", "{\"seconds\": ");  // truncated
+  EXPECT_FALSE(ad::cached_result(config, "result.json", ad::check_synthesis).has_value());
+  std::string said = testing::internal::GetCapturedStderr();
+  EXPECT_NE(said.find("the cached " + (config.dir / "result.json").string() + " is corrupt"), std::string::npos) << said;
+  EXPECT_FALSE(fs::exists(config.dir / "result.json"));
+
+  build(negative);  // a manifest that vouches for it: the content is still checked
+  testing::internal::CaptureStderr();
+  EXPECT_FALSE(ad::cached_result(config, "result.json", ad::check_synthesis).has_value());
+  said = testing::internal::GetCapturedStderr();
+  EXPECT_NE(said.find("'area_um2' is -5.0"), std::string::npos) << said;
+
+  // A failed build leaves no work folder, and keeps its logs apart.
+  EXPECT_THROW(ad::build_result(config, "result.json",
+                                [&](const fs::path& work) {
+                                  cdsim::write_file_atomic(work / "unit.log", "ERROR\n");
+                                  throw std::runtime_error("yosys failed: " + (work / "unit.log").string());
+                                }),
+               std::runtime_error);
+  for (const auto& entry : fs::directory_iterator(cache))
+    EXPECT_NE(entry.path().filename().string().rfind("tmp-", 0), 0u) << entry.path();
+  EXPECT_TRUE(fs::exists(cache / "failed-0123456789abcdef" / "unit.log"));
+  fs::remove_all(cache);
+}

@@ -3,7 +3,11 @@
 // model/interrupt.cpp): bad input is refused naming the option and the value
 // or the file and line; outputs are whole or absent; a folder takes one run
 // at a time; a signal stops with 128 + its number.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <csignal>
@@ -12,11 +16,13 @@
 #include <filesystem>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "cache_files.hpp"
+#include "child_process.hpp"
 #include "cli.hpp"
 #include "interrupt.hpp"
 #include "regress.hpp"
@@ -287,4 +293,153 @@ TEST(RegressHangLimit, ScalesWithTheModelsCyclesAndTheBackPressure) {
   EXPECT_GT(double(cdsim::rtl::hang_cycle_limit(cycles, pixels, 0.95)), 3 * mean);
   EXPECT_GT(cdsim::rtl::hang_cycle_limit(2 * cycles, 2 * pixels, 0.5),
             cdsim::rtl::hang_cycle_limit(cycles, pixels, 0.5));
+}
+
+// Outputs never name an input or each other, however the path is spelled.
+TEST(OutputFiles, AnOutputThatIsAnInputOrAnotherOutputIsRefused) {
+  const fs::path dir = fresh_folder("distinct");
+  cdsim::write_file_atomic(dir / "scene.tri", "x\n");
+  fs::create_symlink(dir / "scene.tri", dir / "link.tri");
+  fs::create_hard_link(dir / "scene.tri", dir / "hard.tri");
+  const std::vector<cdsim::NamedFile> scene = {{"--scene", dir / "scene.tri"}};
+  for (const fs::path& out : {dir / "scene.tri", dir / "link.tri", dir / "hard.tri", dir / "." / "scene.tri"})
+    EXPECT_PRED2(contains, what_of([&] { cdsim::check_distinct_files({{"--json", out}}, scene); }),
+                 "is the input --scene " + (dir / "scene.tri").string())
+        << out;
+  // Two outputs, neither there yet, spelled differently.
+  EXPECT_PRED2(contains,
+               what_of([&] { cdsim::check_distinct_files({{"--json", dir / "r.json"}, {"--dump", dir / "sub" / ".." / "r.json"}}, {}); }),
+               "both name one file");
+  fs::create_directory(dir / "sub");
+  EXPECT_PRED2(contains,
+               what_of([&] { cdsim::check_distinct_files({{"--json", dir / "r.json"}, {"--dump", dir / "sub" / ".." / "r.json"}}, {}); }),
+               "both name one file");
+  EXPECT_EQ(what_of([&] { cdsim::check_distinct_files({{"--json", dir / "r.json"}, {"--dump", dir / "r.csv"}}, scene); }), "");
+  // Devices replace nothing: /dev/null may take every output.
+  EXPECT_EQ(what_of([] { cdsim::check_distinct_files({{"--json", "/dev/null"}, {"--dump", "/dev/null"}}, {}); }), "");
+  fs::remove_all(dir);
+}
+
+// --trace: the FST library seeks and renames, so a device or a pipe is refused
+// before the run, never replaced by a regular file.
+TEST(OutputFiles, AWaveformIsRefusedADeviceOrAPipe) {
+  const fs::path dir = fresh_folder("trace");
+  EXPECT_PRED2(contains, what_of([] { cdsim::check_regular_output("--trace", "/dev/null"); }),
+               "--trace /dev/null: is a character device");
+  ASSERT_EQ(::mkfifo((dir / "fifo").c_str(), 0600), 0);
+  EXPECT_PRED2(contains, what_of([&] { cdsim::check_regular_output("--trace", dir / "fifo"); }), "is a pipe");
+  EXPECT_EQ(what_of([&] { cdsim::check_regular_output("--trace", dir / "new.fst"); }), "");
+  const fs::path temporary = cdsim::temporary_beside(dir / "w.fst");
+  EXPECT_EQ(temporary.parent_path(), dir);
+  cdsim::write_file_atomic(temporary, "fst");
+  cdsim::publish_file(temporary, dir / "w.fst");
+  EXPECT_EQ(cdsim::read_text_file(dir / "w.fst"), "fst");
+  EXPECT_FALSE(fs::exists(temporary));
+  fs::remove_all(dir);
+}
+
+// A cache folder is this user's alone: created 0700, refused when others can write it.
+TEST(CacheFiles, ACacheFolderIsCreatedPrivateAndCheckedBeforeUse) {
+  const fs::path dir = fresh_folder("cache");
+  cdsim::check_cache_folder(dir / "a" / "rtl", "--rtl-cache");
+  EXPECT_EQ(fs::status(dir / "a").permissions() & fs::perms::all, fs::perms::owner_all);
+  EXPECT_EQ(fs::status(dir / "a" / "rtl").permissions() & fs::perms::all, fs::perms::owner_all);
+  fs::permissions(dir / "a" / "rtl", fs::perms::all);
+  EXPECT_PRED2(contains, what_of([&] { cdsim::check_cache_folder(dir / "a" / "rtl", "--rtl-cache"); }),
+               "is writable by every user (mode 0777)");
+  fs::permissions(dir / "a" / "rtl", fs::perms::owner_all | fs::perms::group_all);
+  EXPECT_PRED2(contains, what_of([&] { cdsim::check_cache_folder(dir / "a" / "rtl", "--rtl-cache"); }),
+               "is writable by its group");
+  if (::geteuid() == 0) {  // only root can give a folder away
+    fs::create_directory(dir / "theirs");
+    ASSERT_EQ(::chown((dir / "theirs").c_str(), 65534, 65534), 0);
+    fs::permissions(dir / "theirs", fs::perms::owner_all);
+    EXPECT_PRED2(contains, what_of([&] { cdsim::check_cache_folder(dir / "theirs", "--cache"); }),
+                 "belongs to user 65534");
+  }
+  cdsim::write_file_atomic(dir / "file", "x");
+  EXPECT_PRED2(contains, what_of([&] { cdsim::check_cache_folder(dir / "file", "--cache"); }), "is not a folder");
+  fs::remove_all(dir);
+}
+
+// Without XDG_CACHE_HOME and HOME: the home folder of the password database,
+// never a folder of /tmp that another user may own.
+TEST(CacheFiles, TheCacheRootIsPerUserWithoutHome) {
+  EXPECT_EXIT(
+      {
+        ::unsetenv("XDG_CACHE_HOME");
+        ::unsetenv("HOME");
+        const std::string root = cdsim::cache_root("rtl").string();
+        const bool in_tmp = root.rfind(fs::temp_directory_path().string(), 0) == 0;
+        std::exit(!in_tmp && contains(root, "/.cache/cdsim/rtl") ? 0 : 1);
+      },
+      ::testing::ExitedWithCode(0), "");
+}
+
+// A file that a full disk truncated, or anything changed, fails its manifest.
+TEST(CacheFiles, TheManifestCatchesATruncatedOrChangedFile) {
+  const fs::path dir = fresh_folder("manifest");
+  cdsim::write_file_atomic(dir / "bench.so", std::string(5000, 'x'));
+  cdsim::write_manifest(dir / "manifest", dir, {dir / "bench.so"});
+  EXPECT_EQ(cdsim::verify_manifest(dir / "manifest", dir), "");
+  fs::resize_file(dir / "bench.so", 1000);
+  EXPECT_EQ(cdsim::verify_manifest(dir / "manifest", dir), "bench.so: 1000 bytes, 5000 when built");
+  cdsim::write_file_atomic(dir / "bench.so", std::string(4999, 'x') + "y");
+  EXPECT_PRED2(contains, cdsim::verify_manifest(dir / "manifest", dir), "bench.so: its content changed");
+  fs::remove(dir / "bench.so");
+  EXPECT_EQ(cdsim::verify_manifest(dir / "manifest", dir), "bench.so: missing");
+  EXPECT_EQ(cdsim::verify_manifest(dir / "none", dir), "none: missing");
+  fs::remove_all(dir);
+}
+
+// Two cdsim that want one cache entry: the second waits for the first.
+TEST(CacheFiles, TheEntryLockMakesASecondBuilderWait) {
+  const fs::path dir = fresh_folder("lock");
+  auto first = std::make_unique<cdsim::CacheEntryLock>(dir / "e.lock", "entry");
+  const int fd = ::open((dir / "e.lock").c_str(), O_RDWR);
+  EXPECT_NE(::flock(fd, LOCK_EX | LOCK_NB), 0);
+  first.reset();
+  EXPECT_EQ(::flock(fd, LOCK_EX | LOCK_NB), 0);
+  ::close(fd);
+  fs::remove_all(dir);
+}
+
+// What a tool started (a shell's children here) goes with it; so does the
+// tool when the cdsim that started it dies at once.
+// A sleep with a duration of this test process's own, to find it by.
+std::string unique_sleep() { return "sleep " + std::to_string(100000 + ::getpid()); }
+bool sleep_left(const std::string& sleep) {
+  for (int i = 0; i < 100; ++i) {
+    if (std::system(("pgrep -fx '" + sleep + "' >/dev/null").c_str()) != 0) return false;
+    ::usleep(20000);
+  }
+  return true;
+}
+
+TEST(ChildProcess, StopEndsTheToolAndEverythingItStarted) {
+  const fs::path dir = fresh_folder("child");
+  const fs::path marker = dir / "started";
+  const std::string sleep = unique_sleep();
+  cdsim::ChildProcess child({"sh", "-c", sleep + " & " + sleep + " & touch " + marker.string() + "; wait"},
+                            dir / "log");
+  for (int i = 0; i < 500 && !fs::exists(marker); ++i) ::usleep(10000);
+  ASSERT_TRUE(fs::exists(marker));
+  child.stop();
+  EXPECT_FALSE(sleep_left(sleep)) << sleep << " outlived stop()";
+  fs::remove_all(dir);
+}
+
+TEST(ChildProcess, AToolDiesWithTheProcessThatStartedIt) {
+  const fs::path dir = fresh_folder("orphan");
+  const std::string sleep = unique_sleep();
+  const pid_t parent = ::fork();
+  if (parent == 0) {
+    cdsim::ChildProcess child({"sh", "-c", sleep + " & wait"}, dir / "log");
+    ::usleep(300000);
+    _exit(0);  // no destructor runs: as after SIGKILL
+  }
+  int status = 0;
+  ::waitpid(parent, &status, 0);
+  EXPECT_FALSE(sleep_left(sleep)) << sleep << " outlived the process that started it";
+  fs::remove_all(dir);
 }
