@@ -464,12 +464,14 @@ RunBench load_custom_rtl(const Widths& widths, const std::string& cache_dir, Cov
   const auto start = std::chrono::steady_clock::now();
   std::error_code ec;
   remove_leftovers(root, model_dir);
+  bool bench_corrupt = false;
   if (fs::exists(library)) {
     if (const std::string wrong = verify_manifest(library.string() + ".manifest", model_dir); !wrong.empty()) {
       std::cout << fmt::format("regress: the cached bench {} is corrupt ({}); rebuilding it\n",
                                library.string(), wrong);
       fs::remove(library);
       fs::remove(library.string() + ".manifest", ec);
+      bench_corrupt = true;
     }
   }
   // The model's files only matter to a bench still to be linked.
@@ -498,9 +500,9 @@ RunBench load_custom_rtl(const Widths& widths, const std::string& cache_dir, Cov
     std::cout << fmt::format("regress: built in {:.0f} s\n", seconds_since(start));
   } else if (!fs::exists(library)) {
     std::cout << fmt::format(
-        "regress: reusing the RTL verilated for these widths in {}; a new cdsim build needs its "
-        "own bench (about {:.0f} s)\n",
-        model_dir.string(), timings.bench);
+        "regress: reusing the RTL verilated for these widths in {}; {} (about {:.0f} s)\n",
+        model_dir.string(), bench_corrupt ? "relinking its bench" : "a new cdsim build needs its own bench",
+        timings.bench);
     std::cout.flush();
     build_bench(root, model_dir, library);
     timings.bench = seconds_since(start);
