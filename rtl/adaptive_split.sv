@@ -72,6 +72,9 @@ module adaptive_split #(
   localparam int DepthBits   = 8;
   localparam int Levels      = Depth > 0 ? Depth : 1;         // nodes split at depth 0 .. Depth - 1
   localparam int LevelBits   = $clog2(Levels + 1);
+  // An index of the per-level arrays: narrower than LevelBits when Levels is
+  // a power of two (adapt_depth 2, 4), which Verilator's WIDTH check refuses.
+  localparam int IndexBits   = Levels > 1 ? $clog2(Levels) : 1;
   localparam int ExpBits     = $clog2(NodeQBits) + 1;
   localparam int ProductBits = BigBits + RecipBits + 2;
   localparam int ShiftBits   = ExpBits + 8;
@@ -321,7 +324,7 @@ module adaptive_split #(
         any_open = 1'b1;
         open_level = LevelBits'(l);
       end
-    open_child = lv_next[open_level];
+    open_child = lv_next[IndexBits'(open_level)];
     split_level = LevelBits'(cur_depth);
   end
 
@@ -340,8 +343,8 @@ module adaptive_split #(
           cur_v[k] <= lv_v[6 * open_level + child_slot(open_child, 2'(k))];
         end
         cur_depth <= DepthBits'(open_level) + DepthBits'(1);
-        if (open_child == 2'd3) lv_open_q[open_level] <= 1'b0;
-        else lv_next[open_level] <= open_child + 2'd1;
+        if (open_child == 2'd3) lv_open_q[IndexBits'(open_level)] <= 1'b0;
+        else lv_next[IndexBits'(open_level)] <= open_child + 2'd1;
         state_q <= StNode;
       end else if (!leaf_sent && !any_leaf_q) begin
         // Every sub-triangle was dropped: the triangle was split, so level 0 holds it.
@@ -445,8 +448,8 @@ module adaptive_split #(
                 lv_u[6 * split_level + k] <= cur_u[k];     lv_u[6 * split_level + 3 + k] <= mid_u[k];
                 lv_v[6 * split_level + k] <= cur_v[k];     lv_v[6 * split_level + 3 + k] <= mid_v[k];
               end
-              lv_next[split_level] <= 2'd1;
-              lv_open_q[split_level] <= 1'b1;
+              lv_next[IndexBits'(split_level)] <= 2'd1;
+              lv_open_q[IndexBits'(split_level)] <= 1'b1;
               state_q <= StNode;
             end else begin
               state_q <= StOffer;
