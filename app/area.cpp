@@ -293,10 +293,14 @@ void build_result(const UnitConfig& config, const std::string& name,
   const fs::path cache = config.dir.parent_path();
   const std::string key = config.dir.filename().string();
   std::error_code ec;
-  // Work folders of this entry that a killed cdsim left (no one else builds
-  // it: the caller holds its lock).
-  for (const auto& entry : fs::directory_iterator(cache, ec))
-    if (entry.path().filename().string().rfind("tmp-" + key + "-", 0) == 0) fs::remove_all(entry.path(), ec);
+  // Work folders that a killed cdsim left: this entry's at once (no one else
+  // builds it: the caller holds its lock), the others' after a day.
+  const auto day_ago = fs::file_time_type::clock::now() - std::chrono::hours(24);
+  for (const auto& entry : fs::directory_iterator(cache, ec)) {
+    const std::string file = entry.path().filename().string();
+    if (file.rfind("tmp-" + key + "-", 0) == 0 || (file.rfind("tmp-", 0) == 0 && entry.last_write_time(ec) < day_ago))
+      fs::remove_all(entry.path(), ec);
+  }
   const fs::path work = cache / fmt::format("tmp-{}-{}-{}", key, ::getpid(), counter++);
   RemoveOnExit remove_work(work);
   fs::create_directory(work);
