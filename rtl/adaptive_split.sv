@@ -75,7 +75,11 @@ module adaptive_split #(
   // An index of the per-level arrays: narrower than LevelBits when Levels is
   // a power of two (adapt_depth 2, 4), which Verilator's WIDTH check refuses.
   localparam int IndexBits   = Levels > 1 ? $clog2(Levels) : 1;
-  localparam int ExpBits     = $clog2(NodeQBits) + 1;
+  // The operand unit shifts q within its QBits and compares the exponent
+  // with RecipBits: q is zero-extended to at least RecipBits + 1 bits and the
+  // exponent holds both (q_bits 4 or recip_bits 32 refused the build).
+  localparam int OperandQBits = NodeQBits + 1 > RecipBits + 1 ? NodeQBits + 1 : RecipBits + 1;
+  localparam int ExpBits     = $clog2(OperandQBits) + 1;
   localparam int ProductBits = BigBits + RecipBits + 2;
   localparam int ShiftBits   = ExpBits + 8;
   localparam int DiffBits    = LeafCoordBits + 1;
@@ -198,9 +202,9 @@ module adaptive_split #(
   assign issue_valid = state_q == StEval && eval_count_q >= 8'd1 && eval_count_q <= 8'd3;
   assign issue_index = 2'(eval_count_q - 8'd1);
 
-  reciprocal_operand #(.QBits(NodeQBits + 1), .RecipBits(RecipBits), .ExponentBits(ExpBits)) u_operand (
+  reciprocal_operand #(.QBits(OperandQBits), .RecipBits(RecipBits), .ExponentBits(ExpBits)) u_operand (
     .enable_i    (issue_valid),
-    .q_i         ($signed({1'b0, mid_q[issue_index]})),
+    .q_i         ($signed(OperandQBits'({1'b0, mid_q[issue_index]}))),
     .depth_out_o (operand_depth_out),
     .exponent_o  (operand_exponent),
     .mantissa_o  (operand_mantissa)
