@@ -49,7 +49,7 @@ const ParamInfo& info(const std::string& name) {
   throw std::logic_error("unknown parameter " + name);
 }
 
-// Wide but valid starting widths (the walker's accumulator must fit 64 bits)
+// Wide but valid starting widths (the walker's accumulator within 64 bits, the model's fast path)
 // for the widths sizing changes; the others stay as the user set them, so
 // that a design's result names only what its hardware depends on.
 Widths widest(Widths w, const Design& design) {

@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "coverage.hpp"
+#include "fixed.hpp"
 #include "setup_engine.hpp"
 
 namespace cdsim {
@@ -52,16 +53,30 @@ inline int64_t line_index(const Setup& setup, const ColumnState& column, int64_t
 }
 
 // u_line(k, o) in max(t_frac, s_frac) fraction bits; exact, no narrowing.
-struct LineValue {
-  int64_t u = 0, v = 0;
+// Int is int64_t where walker_bits() allows, else fx::Wide (the widest
+// t_int, s_int and fraction bits of widths.def need 74 bits).
+template <class Int>
+struct LineValueOf {
+  Int u = 0, v = 0;
 };
+using LineValue = LineValueOf<int64_t>;
 inline int accumulator_frac(const Widths& w) { return w.t_frac > w.s_frac ? w.t_frac : w.s_frac; }
-inline LineValue line_value(const TableEntry& e, int64_t offset, const Widths& w) {
+// Bits of the walker's accumulator T + o S (o up to 2^14 columns), with the
+// correction's bit and the output fraction bits beyond it (validate()).
+inline int walker_bits(const Widths& w) {
+  const int frac = accumulator_frac(w);
+  const int t = w.t_int + frac, s = w.s_int + frac + 14;
+  return (t > s ? t : s) + 2 + (w.out_frac > frac ? w.out_frac - frac : 0);
+}
+inline bool walker_fits_64(const Widths& w) { return walker_bits(w) <= 63; }
+template <class Int = int64_t>
+inline LineValueOf<Int> line_value(const TableEntry& e, int64_t offset, const Widths& w) {
   const int frac = accumulator_frac(w);
   const int t_align = frac - w.t_frac, s_align = frac - w.s_frac;
   // Multiplications, not shifts: left-shifting a negative value is undefined in C++17.
-  const int64_t t_scale = int64_t{1} << t_align, s_scale = int64_t{1} << s_align;
-  return {e.t_u * t_scale + offset * (e.s_u * s_scale), e.t_v * t_scale + offset * (e.s_v * s_scale)};
+  const Int t_scale = Int{1} << t_align, s_scale = Int{1} << s_align;
+  return {Int{e.t_u} * t_scale + Int{offset} * (Int{e.s_u} * s_scale),
+          Int{e.t_v} * t_scale + Int{offset} * (Int{e.s_v} * s_scale)};
 }
 
 }  // namespace cdsim

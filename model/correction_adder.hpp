@@ -21,12 +21,13 @@ struct CorrectedValue {
 
 // own + round(weight (other - own) 2^-d_frac), narrowed to the output format.
 // Without a neighbour pass the same value twice.
-inline CorrectedValue linear_correction(const LineValue& own, const LineValue& neighbour,
+template <class Int>
+inline CorrectedValue linear_correction(const LineValueOf<Int>& own, const LineValueOf<Int>& neighbour,
                                         int64_t weight, const Widths& w) {
-  const auto correct = [&](int64_t a, int64_t b) {
+  const auto correct = [&](Int a, Int b) {
     if (a == b) return a;
-    return a + static_cast<int64_t>(fx::shift_round(fx::Wide{weight} * (b - a), w.d_frac,
-                                                    fx::Round::Nearest));
+    return a + static_cast<Int>(fx::shift_round(fx::Wide{weight} * (b - a), w.d_frac,
+                                                fx::Round::Nearest));
   };
   const int shift = accumulator_frac(w) - w.out_frac;
   const int64_t hi = (int64_t{1} << (w.out_int + w.out_frac - 1)) - 1;
@@ -100,17 +101,18 @@ struct CorrectedFragment {
 // One pixel: its own entry and, when correct (a design with correction and a
 // pixel off its line), the neighbour entry, which lies toward direction. With
 // persp the weight is the perspective-correct one (persp_weight).
-inline CorrectedFragment correction_adder(const TableEntry& own_entry,
-                                          const TableEntry* neighbour_entry, int64_t offset,
-                                          int64_t weight, int direction, bool persp,
-                                          const Widths& w) {
+template <class Int>
+inline CorrectedFragment correction_adder_in(const TableEntry& own_entry,
+                                             const TableEntry* neighbour_entry, int64_t offset,
+                                             int64_t weight, int direction, bool persp,
+                                             const Widths& w) {
   CorrectedFragment out;
   out.flags = own_entry.flags;
-  const LineValue own = line_value(own_entry, offset, w);
-  LineValue other = own;
+  const LineValueOf<Int> own = line_value<Int>(own_entry, offset, w);
+  LineValueOf<Int> other = own;
   if (neighbour_entry) {
     if (neighbour_entry->flags == 0) {
-      other = line_value(*neighbour_entry, offset, w);
+      other = line_value<Int>(*neighbour_entry, offset, w);
       if (persp) {
         weight = persp_weight(weight, direction, own_entry.eps, w);
         if (own_entry.eps_saturated) out.flags |= flag::kTableSaturated;
@@ -122,6 +124,17 @@ inline CorrectedFragment correction_adder(const TableEntry& own_entry,
   out.value = linear_correction(own, other, weight, w);
   if (out.value.saturated) out.flags |= flag::kOutputSaturated;
   return out;
+}
+
+// 64-bit arithmetic where the widths allow it (every configuration but the
+// widest s_int and fraction bits), 128-bit beyond: the same values.
+inline CorrectedFragment correction_adder(const TableEntry& own_entry,
+                                          const TableEntry* neighbour_entry, int64_t offset,
+                                          int64_t weight, int direction, bool persp,
+                                          const Widths& w) {
+  return walker_fits_64(w)
+             ? correction_adder_in<int64_t>(own_entry, neighbour_entry, offset, weight, direction, persp, w)
+             : correction_adder_in<fx::Wide>(own_entry, neighbour_entry, offset, weight, direction, persp, w);
 }
 
 }  // namespace cdsim

@@ -58,15 +58,22 @@ Wide floor_div(Wide numerator, Wide denominator);
 Wide ceil_div(Wide numerator, Wide denominator);
 
 // The same as narrow() with Round::Nearest and Overflow::Saturate for a value
-// that fits 64 bits before and after the shift (the walker's accumulator;
-// validate() in widths.cpp guarantees it). Bounds are the format's raw range.
-inline int64_t narrow_nearest_saturate(int64_t raw, int shift, int64_t lo, int64_t hi,
-                                       bool* overflowed) {
-  const int64_t scaled = shift > 0 ? (raw + (int64_t{1} << (shift - 1))) >> shift
-                                   : static_cast<int64_t>(static_cast<uint64_t>(raw) << -shift);
+// that fits Int (int64_t or Wide) before and after the shift (the walker's
+// accumulator: column_walker.hpp, walker_bits, picks Int). Bounds are the
+// format's raw range.
+inline int64_t left_shift(int64_t x, int shift) {
+  return static_cast<int64_t>(static_cast<uint64_t>(x) << shift);
+}
+inline Wide left_shift(Wide x, int shift) {
+  __extension__ typedef unsigned __int128 UWide;
+  return static_cast<Wide>(static_cast<UWide>(x) << shift);
+}
+template <class Int>
+inline int64_t narrow_nearest_saturate(Int raw, int shift, int64_t lo, int64_t hi, bool* overflowed) {
+  const Int scaled = shift > 0 ? (raw + (Int{1} << (shift - 1))) >> shift : left_shift(raw, -shift);
   if (scaled > hi) return *overflowed = true, hi;
   if (scaled < lo) return *overflowed = true, lo;
-  return scaled;
+  return static_cast<int64_t>(scaled);
 }
 
 // Out of line: the rare paths (a left shift past 125 bits, wrapping).

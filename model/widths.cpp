@@ -64,20 +64,21 @@ void apply_settings(Widths& widths, const std::vector<std::string>& assignments)
 }
 
 void validate(const Widths& w) {
-  // The model's walker accumulates T + o*S in 64 bits at max(t_frac, s_frac)
-  // fraction bits, with o up to 2^14 columns, then the correction adds one
-  // more bit. The ranges of widths.def allow more than that in sum.
+  // The model's walker accumulates T + o*S (column_walker.hpp, walker_bits)
+  // in 64 bits where that suffices, else in 128; the correction's product
+  // of the weight and a difference of two such values must fit 127 bits.
   const int frac = std::max(w.t_frac, w.s_frac);
   const int beyond = std::max(0, w.out_frac - frac);
   const int acc_bits = std::max(w.t_int + frac, w.s_int + frac + 14) + 2 + beyond;
-  if (acc_bits > 63) {
-    const int t_int_max = 63 - 2 - frac - beyond, s_int_max = 63 - 2 - 14 - frac - beyond;
+  if (acc_bits + w.d_frac + 2 > 127) {
+    const int t_int_max = 125 - w.d_frac - 2 - frac - beyond, s_int_max = t_int_max - 14;
     throw std::invalid_argument(fmt::format(
         "widths t_int={} s_int={} t_frac={} s_frac={} out_frac={} need a {}-bit walker accumulator "
         "(t_int, or s_int + 14 for 2^14 columns, + max(t_frac, s_frac) + 2, + out_frac beyond that); "
-        "the model's limit is 63 bits: with these fraction bits t_int is at most {} and s_int at "
-        "most {} (cdsim widths lists each parameter's limit at the others' values)",
-        w.t_int, w.s_int, w.t_frac, w.s_frac, w.out_frac, acc_bits, t_int_max, s_int_max));
+        "with d_frac={} the model's limit is {} bits: t_int at most {} and s_int at most {} here "
+        "(cdsim widths lists each parameter's limit at the others' values)",
+        w.t_int, w.s_int, w.t_frac, w.s_frac, w.out_frac, acc_bits, w.d_frac, 125 - w.d_frac, t_int_max,
+        s_int_max));
   }
   if (w.persp_table_log2 > w.persp_frac)
     throw std::invalid_argument(fmt::format(

@@ -44,8 +44,8 @@ while read -r name lo hi; do
 done <<<"$params"
 try "every parameter at its minimum" "${all_min[@]}"
 [ $? -eq 3 ] && { echo "FAIL: the minima are refused together"; failures=$((failures + 1)); }
-# Together the maxima exceed what the walker's accumulator and the adaptive
-# leaves hold; the refusal names the limit (checked in try).
+# Together the maxima exceed what the adaptive leaves' coordinates hold
+# (subpixel_bits + adapt_depth <= 14); the refusal names the limit (try).
 try "every parameter at its maximum" "${all_max[@]}"
 echo "$narrowed"
 [ "$failures" -eq 0 ] || { echo "FAIL: $failures cases"; exit 1; }

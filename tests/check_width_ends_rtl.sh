@@ -4,7 +4,7 @@
 # model with no mismatch.
 #   all:  every parameter at its minimum; then every parameter at its maximum,
 #         lowered only where `cdsim widths` says the others narrow it (the
-#         walker's accumulator: s_int; the adaptive leaves: adapt_depth).
+#         adaptive leaves' coordinates: adapt_depth at most 14 - subpixel_bits).
 #   each: each parameter alone at its minimum and at its maximum (a custom
 #         RTL build each: about two hours on 2 cores; label long).
 # Usage: check_width_ends_rtl.sh CDSIM RTL_CACHE all|each
@@ -39,7 +39,6 @@ if [ "$mode" = all ]; then
     min+=("$name=$lo")
     case $name in
       # The largest that the other maxima allow (cdsim widths --set ... names them).
-      s_int) max+=("s_int=19") ;;
       adapt_depth) max+=("adapt_depth=4") ;;
       *) max+=("$name=$hi") ;;
     esac

@@ -4,11 +4,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <random>
 #include <tuple>
 #include <utility>
 #include <vector>
 
+#include "correction_adder.hpp"
 #include "derived_widths.hpp"
 #include "kim_datapath.hpp"
 #include "test_support.hpp"
@@ -841,3 +843,39 @@ TEST(UnitSchedule, ClocksOfAStreamAddUpFromFirstAcceptToLastRecord) {
 
 }  // namespace
 }  // namespace cdsim
+
+// The walker's accumulator is 64-bit where the widths allow it and 128-bit
+// beyond (s_int=30 with 20 fraction bits needs 66 bits): both give the same
+// fragment wherever 64 bits suffice, and the 128-bit one is exact beyond.
+TEST(UnitBehaviour, WideWalkerAccumulatorEqualsTheNarrowOneAndIsExactBeyond) {
+  cdsim::Widths w;
+  ASSERT_TRUE(cdsim::walker_fits_64(w));
+  std::mt19937_64 rng(7);
+  const auto draw = [&](int bits) {
+    return static_cast<int64_t>(rng() % (uint64_t{1} << bits)) - (int64_t{1} << (bits - 1));
+  };
+  for (int i = 0; i < 2000; ++i) {
+    cdsim::TableEntry own, neighbour;
+    own.t_u = draw(w.t_int + w.t_frac), own.t_v = draw(w.t_int + w.t_frac);
+    own.s_u = draw(w.s_int + w.s_frac - 6), own.s_v = draw(w.s_int + w.s_frac - 6);
+    neighbour = own;
+    neighbour.t_u += draw(20), neighbour.s_v += draw(12);
+    const int64_t offset = draw(14), weight = static_cast<int64_t>(rng() % (uint64_t{1} << w.d_frac));
+    const auto narrow = cdsim::correction_adder_in<int64_t>(own, &neighbour, offset, weight, 1, false, w);
+    const auto wide = cdsim::correction_adder_in<cdsim::fx::Wide>(own, &neighbour, offset, weight, 1, false, w);
+    EXPECT_EQ(narrow.value.u, wide.value.u);
+    EXPECT_EQ(narrow.value.v, wide.value.v);
+    EXPECT_EQ(narrow.flags, wide.flags);
+  }
+  // Past 64 bits: two neighbour lines at the ends of S's range (s_int=30),
+  // 16383 columns out, 2^63 apart; half way between them is about 0, which
+  // the 128-bit accumulator gives and 64 bits (their difference wraps) do not.
+  w.s_int = 30;
+  ASSERT_FALSE(cdsim::walker_fits_64(w));
+  cdsim::TableEntry a, b;
+  a.s_u = (int64_t{1} << 49) - 1;
+  b.s_u = -(int64_t{1} << 49);
+  const auto f = cdsim::correction_adder(a, &b, 16383, int64_t{1} << (w.d_frac - 1), 1, false, w);
+  EXPECT_FALSE(f.value.saturated);
+  EXPECT_LE(std::abs(f.value.u), 2);  // -16383 / 2 at 20 fraction bits, to 8
+}
