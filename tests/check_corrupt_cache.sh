@@ -15,7 +15,7 @@ shift 4
 export SYSTEMC_DISABLE_COPYRIGHT_MESSAGE=1
 rm -rf "$work" && mkdir -p -m 0700 "$work/cache"
 find "$source" -mindepth 1 -maxdepth 1 -type d ! -name 'tmp-*' ! -name 'failed-*' -exec cp -a {} "$work/cache/" \;
-bench=$(find "$work/cache" -name 'bench-*.so' | head -1)
+bench=$(ls -t "$work"/cache/*/bench-*.so 2>/dev/null | head -1)  # this cdsim's: the newest
 [ -n "$bench" ] || { echo "FAIL: no bench-*.so in $source (run the test that builds it first)"; exit 1; }
 size=$(stat -c %s "$bench")
 truncate -s 1000 "$bench"
