@@ -28,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "cache_files.hpp"
 #include "scoreboard.hpp"
 
 namespace cdsim::rtl {
@@ -377,12 +378,24 @@ int run_bench(const std::vector<Job>& jobs, const Widths& widths, const BenchOpt
     const size_t index = bench.failed_index();
     const std::string path =
         options.trace.empty() ? fmt::format("regress_fail_triangle{}.fst", index) : options.trace_name;
-    if (options.trace.empty()) trace->open(path.c_str());
+    // Without --trace too, the waveform goes beside its name and is renamed
+    // over it, as every output is: never half a file, never over a device.
+    const std::string temporary = options.trace.empty() ? temporary_beside(path).string() : std::string();
+    if (options.trace.empty()) trace->open(temporary.c_str());
     bench.replay(index);
     sc_core::sc_start();
     trace->close();
+    std::string written = path;
+    if (options.trace.empty()) {
+      try {
+        check_regular_output("the waveform", path);
+        publish_file(temporary, path);
+      } catch (const std::exception& e) {
+        written = fmt::format("{} ({})", temporary, e.what());
+      }
+    }
     std::cout << fmt::format("waveform of triangle {} (replayed, same back-pressure): {}\n", index,
-                             path);
+                             written);
   } else {
     trace->close();
     if (!options.trace.empty()) std::cout << fmt::format("waveform: {}\n", options.trace_name);
