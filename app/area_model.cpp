@@ -18,6 +18,7 @@
 #include "build_info.hpp"
 #include "cache_files.hpp"
 #include "cli_checks.hpp"
+#include "column_walker.hpp"
 #include "common.hpp"
 #include "progress.hpp"
 #include "rtl_sources.hpp"
@@ -348,6 +349,11 @@ Widths random_widths(uint64_t seed, const std::string& tag, int index) {
     Widths w;
     for (const ParamInfo& p : param_table())
       w.*(p.field) = p.field == &Widths::table_depth ? 4 << draw(0, 10) : draw(p.min_value, p.max_value);
+    // The draws the committed calibration (rtl/area_calibration.json) was
+    // made of: validate() then also kept the walker's accumulator within 64
+    // bits; it allows more since, but the same seed must give the same
+    // configurations, or the archive's syntheses would be redone.
+    if (!walker_fits_64(w)) continue;
     try {
       validate(w);
       return w;

@@ -66,7 +66,9 @@ std::string default_area_archive_path();
 AreaReport estimate_area(const Design& design, const Widths& widths, const AreaOptions& options);
 
 // Random valid widths for calibration: every parameter uniform in its
-// widths.def range, the table 4 to 4096 lines; reproducible from (seed, tag, index).
+// widths.def range, the table 4 to 4096 lines, the walker's accumulator
+// within 64 bits (as when the committed archive was drawn); reproducible from
+// (seed, tag, index).
 Widths random_widths(uint64_t seed, const std::string& tag, int index);
 
 // The features one word-level cell of Yosys's JSON netlist adds to its module's.
