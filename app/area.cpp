@@ -274,7 +274,7 @@ std::optional<nlohmann::json> cached_result(const UnitConfig& config, const std:
   nlohmann::json j;
   if (wrong.empty()) {
     try {
-      j = nlohmann::json::parse(read_text_file(path));
+      j = read_json_file(path);
       wrong = check(j);
     } catch (const std::exception& e) {
       wrong = e.what();
@@ -500,7 +500,7 @@ AreaReport synthesise_area(const Design& design, const Widths& widths, const Are
                                            (work / "unit.log").string()));
     write_file_atomic(work / "result.json", result.dump(2) + "\n");
   });
-  if (!synthesised) synthesised = nlohmann::json::parse(read_text_file(config.dir / "result.json"));
+  if (!synthesised) synthesised = read_json_file(config.dir / "result.json");
   AreaReport report = area_report(design, widths, config, *synthesised, options);
   report.cached = cached;
   return report;

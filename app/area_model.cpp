@@ -190,7 +190,7 @@ CoarseResult coarse_pass(const UnitConfig& config) {
       const fs::path json = work / ("coarse_" + what + ".json");
       write_file_atomic(work / ("coarse_" + what + ".ys"), script + fmt::format("write_json {}\n", json.string()));
       run_yosys({{work / ("coarse_" + what + ".ys"), work / ("coarse_" + what + ".log"), "elaborating the " + what}});
-      Inventory inv = inventory_from_yosys_json(nlohmann::json::parse(read_text_file(json)));
+      Inventory inv = inventory_from_yosys_json(read_json_file(json));
       fs::remove(json);  // megabytes; the inventory keeps what the model needs
       return inv;
     };
@@ -257,7 +257,7 @@ std::string default_area_archive_path() { return (fs::path(kRtlDir) / "area_cali
 nlohmann::json load_area_archive(const std::string& path) {
   if (!fs::exists(path)) return nlohmann::json::object();
   try {
-    const nlohmann::json j = nlohmann::json::parse(read_text_file(path));
+    const nlohmann::json j = read_json_file(path);
     const std::string flow = j.at("flow").get<std::string>();
     const nlohmann::json& configs = j.at("configurations");
     if (!configs.is_object()) throw std::runtime_error("'configurations' is not an object");
@@ -287,7 +287,7 @@ AreaModel load_area_model(const std::string& path) {
     throw std::runtime_error(fmt::format("{}: no area model; make one with cdsim area-model", path));
   nlohmann::json j;
   try {
-    j = nlohmann::json::parse(read_text_file(path));
+    j = read_json_file(path);
     AreaModel m;
     if (j.at("flow").get<std::string>() != kCoarseFlow)
       throw std::runtime_error(fmt::format("it is for flow {}, this build uses {}",

@@ -9,6 +9,9 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "cache_files.hpp"
+#include "loaders/json_structure.hpp"
+
 namespace cdsim {
 
 void add_common(CLI::App* app, CommonOptions& options) {
@@ -51,6 +54,16 @@ std::vector<Design> designs_from(const std::string& list) {
 
 PreparedScene prepared_scene(const CommonOptions& options, const Widths& widths) {
   return prepare(load_scene(options.scene, options.scene_options), widths);
+}
+
+nlohmann::json read_json_file(const std::filesystem::path& path) {
+  const std::string text = read_text_file(path);
+  check_json_depth(text, path.string());
+  try {
+    return nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw std::runtime_error(fmt::format("{}: not JSON: {}", path.string(), e.what()));
+  }
 }
 
 }  // namespace cdsim

@@ -2,6 +2,8 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -28,5 +30,9 @@ void check_output_folder(const std::string& option, const std::string& path);
 // parse_design_list, refusing a design named twice; "all" is every design.
 std::vector<Design> designs_from(const std::string& list);
 PreparedScene prepared_scene(const CommonOptions& options, const Widths& widths);
+// A JSON file that cdsim wrote (a shard's summary, a cache entry, the area
+// model and its archive), its nesting depth checked before the parse
+// (scene/loaders/json_structure.hpp): throws naming the file.
+nlohmann::json read_json_file(const std::filesystem::path& path);
 
 }  // namespace cdsim

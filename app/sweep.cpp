@@ -20,6 +20,7 @@
 #include "area.hpp"
 #include "cache_files.hpp"
 #include "cli_checks.hpp"
+#include "common.hpp"
 #include "interrupt.hpp"
 #include "progress.hpp"
 #include "report.hpp"
@@ -398,12 +399,7 @@ namespace {
 int merge_regressions(const MergeOptions& options) {
   std::vector<nlohmann::json> parts;
   for (const std::string& file : options.shards) {
-    nlohmann::json j;
-    try {
-      j = nlohmann::json::parse(read_text_file(file));
-    } catch (const nlohmann::json::exception& e) {
-      throw std::runtime_error(fmt::format("{}: not JSON: {}", file, e.what()));
-    }
+    nlohmann::json j = read_json_file(file);
     if (!j.is_object() || j.value("kind", "") != "cdsim regress" || !j.contains("shard"))
       throw std::runtime_error(fmt::format(
           "{}: not the summary of a regression shard (regress --shard I/N --json FILE)", file));
@@ -477,11 +473,7 @@ int run_merge_command(const MergeOptions& options) {
     Part p;
     p.folder = folder;
     const fs::path json_path = fs::path(folder) / "sweep.json", csv_path = fs::path(folder) / "sweep.csv";
-    try {
-      p.json = nlohmann::json::parse(read_text_file(json_path));
-    } catch (const nlohmann::json::exception& e) {
-      throw std::runtime_error(fmt::format("{}: not JSON: {}", json_path.string(), e.what()));
-    }
+    p.json = read_json_file(json_path);
     if (!p.json.is_object() || !p.json.contains("shard") || !p.json.contains("rows"))
       throw std::runtime_error(fmt::format("{}: not a shard of a sweep (no 'shard'): was it run with --shard I/N?",
                                            json_path.string()));

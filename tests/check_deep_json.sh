@@ -2,8 +2,9 @@
 # Usage: check_deep_json.sh CDSIM WORK_DIR QUAD_GLTF
 # JSON inputs nested 20,000 levels deep (41 KB; they crashed cdsim with exit
 # 139 through tinygltf's recursion) are made here rather than committed: the
-# quad's glTF with such "extras", the same as a .glb, and JSON scenes naming
-# each. Every one must be refused with the depth named, not crash.
+# quad's glTF with such "extras", the same as a .glb, JSON scenes naming
+# each, and the JSON files cdsim reads back (shard summaries, an area model).
+# Every one must be refused with the depth named, not crash.
 set -u
 cdsim=$1; work=$2; quad=$3
 here=$(cd "$(dirname "$0")" && pwd)
@@ -31,4 +32,15 @@ check "deep.glb \(JSON chunk\):1: JSON nested deeper than 512 levels" "$work/dee
 check "deep.gltf:1: JSON nested deeper than 512 levels" "$work/deep_gltf_scene.json"
 check "deep.glb \(JSON chunk\):1: JSON nested deeper than 512 levels" "$work/deep_glb_scene.json"
 check "deep_scene.json:1: JSON nested deeper than 512 levels" "$work/deep_scene.json"
+# Files cdsim writes and reads back: a regression shard's summary and a
+# sweep shard's results (`cdsim merge`), an area model.
+printf '{"kind": "cdsim regress", "shard": %s}\n' "$deep" > "$work/deep_shard.json"
+"$here/expect_error.sh" "deep_shard.json:1: JSON nested deeper than 512 levels" \
+  "$cdsim" merge "$work/deep_shard.json" --out "$work/merged.json" || status=1
+mkdir -p "$work/deep_sweep" && printf '{"shard": %s}\n' "$deep" > "$work/deep_sweep/sweep.json"
+"$here/expect_error.sh" "sweep.json:1: JSON nested deeper than 512 levels" \
+  "$cdsim" merge "$work/deep_sweep" --out "$work/merged_sweep" || status=1
+printf '{"flow": %s}\n' "$deep" > "$work/deep_model.json"
+"$here/expect_error.sh" "deep_model.json:1: JSON nested deeper than 512 levels" \
+  "$cdsim" area --model --model-file "$work/deep_model.json" --design cd-linear || status=1
 exit $status
