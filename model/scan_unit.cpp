@@ -17,6 +17,7 @@ ScanUnit::ScanUnit(const Design& design, const Widths& widths, int viewport_widt
                    int viewport_height)
     : design_(design),
       widths_(widths),
+      derived_(derive(widths)),
       viewport_width_(viewport_width),
       viewport_height_(viewport_height),
       table_(widths.table_depth * design.density),
@@ -47,7 +48,7 @@ TriangleRecord ScanUnit::run(const UnitTriangle& triangle, std::vector<Fragment>
 
 TriangleRecord ScanUnit::compute(const UnitTriangle& triangle, std::vector<Fragment>* fragments) {
   if (design_.kind == Design::Kind::Adaptive) return run_adaptive(triangle, fragments, false);
-  const Setup setup = setup_engine(triangle, design_, widths_, viewport_width_, viewport_height_);
+  const Setup setup = setup_engine(triangle, design_, widths_, derived_, viewport_width_, viewport_height_);
   if (trace_) {
     trace_->setup = setup;
     trace_->writes.clear();
@@ -242,7 +243,7 @@ TriangleRecord ScanUnit::run_affine(const UnitTriangle& triangle, const Setup& s
 TriangleRecord ScanUnit::run_adaptive(const UnitTriangle& triangle, std::vector<Fragment>* fragments,
                                       bool timed) {
   // The triangle's own setup checks its input and names its major axis.
-  const Setup parent = setup_engine(triangle, design_, widths_, viewport_width_, viewport_height_);
+  const Setup parent = setup_engine(triangle, design_, widths_, derived_, viewport_width_, viewport_height_);
   const AdaptiveSplit split = adaptive_split(triangle, widths_, viewport_width_, viewport_height_);
   work_.clear();
   TriangleRecord record;

@@ -89,6 +89,7 @@ class ScanUnit {
 
   Design design_;
   Widths widths_;
+  DerivedWidths derived_;  // derive(widths_), once
   int viewport_width_, viewport_height_;
   ScanlineTable table_;
   UnitTiming timing_;

@@ -77,6 +77,11 @@ std::array<Wide, 3> normalised_q(const UnitTriangle& t, const Widths& w) {
 
 Setup setup_engine(const UnitTriangle& t, const Design& design, const Widths& w,
                    int viewport_width, int viewport_height) {
+  return setup_engine(t, design, w, derive(w), viewport_width, viewport_height);
+}
+
+Setup setup_engine(const UnitTriangle& t, const Design& design, const Widths& w, const DerivedWidths& dw,
+                   int viewport_width, int viewport_height) {
   Setup s;
   s.density = design.density;
   s.correction = design.correction;
@@ -86,7 +91,6 @@ Setup setup_engine(const UnitTriangle& t, const Design& design, const Widths& w,
   if (s.edges.det == 0 || s.box.empty()) return s;
   s.empty = false;
   // Every intermediate is checked against the width the RTL gives it.
-  const DerivedWidths dw = derive(w);
   for (const UnitVertex& vertex : t.vertex) {
     fits_or_throw(vertex.x, dw.coord_bits, "vertex x");
     fits_or_throw(vertex.y, dw.coord_bits, "vertex y");

@@ -8,6 +8,7 @@
 #include <cstdint>
 
 #include "coverage.hpp"
+#include "derived_widths.hpp"
 #include "design.hpp"
 #include "fixed.hpp"
 #include "widths.hpp"
@@ -64,6 +65,10 @@ struct Setup {
 // exponent cancels in u = U/q and is dropped). 0 when a 1/w underflows.
 std::array<fx::Wide, 3> normalised_q(const UnitTriangle& triangle, const Widths& widths);
 
+// `derived` is derive(widths): a unit derives it once, not per triangle (it
+// includes the setup schedule).
+Setup setup_engine(const UnitTriangle& triangle, const Design& design, const Widths& widths,
+                   const DerivedWidths& derived, int viewport_width, int viewport_height);
 Setup setup_engine(const UnitTriangle& triangle, const Design& design, const Widths& widths,
                    int viewport_width, int viewport_height);
 

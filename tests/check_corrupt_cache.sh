@@ -15,11 +15,18 @@ shift 4
 export SYSTEMC_DISABLE_COPYRIGHT_MESSAGE=1
 rm -rf "$work" && mkdir -p -m 0700 "$work/cache"
 find "$source" -mindepth 1 -maxdepth 1 -type d ! -name 'tmp-*' ! -name 'failed-*' -exec cp -a {} "$work/cache/" \;
-bench=$(ls -t "$work"/cache/*/bench-*.so 2>/dev/null | head -1)  # this cdsim's: the newest
-[ -n "$bench" ] || { echo "FAIL: no bench-*.so in $source (run the test that builds it first)"; exit 1; }
-size=$(stat -c %s "$bench")
-truncate -s 1000 "$bench"
-expect="is corrupt \\($(basename "$bench"): 1000 bytes, $size when built\\); rebuilding it"
+# The source cache holds benches of other units and widths too (the adaptive
+# unit's, say), so every bench is truncated: whichever one these arguments
+# select must be named with its own size.
+benches=()
+for bench in "$work"/cache/*/bench-*.so; do [ -f "$bench" ] && benches+=("$bench"); done
+[ ${#benches[@]} -gt 0 ] || { echo "FAIL: no bench-*.so in $source (run the test that builds it first)"; exit 1; }
+names=()
+for bench in "${benches[@]}"; do
+  names+=("$(basename "$bench"): 1000 bytes, $(stat -c %s "$bench") when built")
+  truncate -s 1000 "$bench"
+done
+expect="is corrupt \\(($(IFS='|'; echo "${names[*]}"))\\); rebuilding it"
 
 "$cdsim" regress "$@" --rtl-cache "$work/cache" >"$work/log" 2>&1 &
 pid=$!
