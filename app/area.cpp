@@ -43,7 +43,7 @@ namespace fs = std::filesystem;
 namespace {
 
 // Bumped whenever the flow below changes, so that cached results are redone.
-constexpr const char* kFlowVersion = "area-flow-4";
+constexpr const char* kFlowVersion = "area-flow-5";
 
 // Yosys writes "=== cd_scan_unit ===" but "Chip area for module '\cd_scan_unit'".
 std::string strip_escape(const std::string& name) {
@@ -99,6 +99,33 @@ std::map<std::string, ModuleStat> parse_stat(const std::string& log) {
   return modules;
 }
 
+std::map<std::string, Multiply> parse_multiplies(const std::string& dump) {
+  std::map<std::string, Multiply> out;
+  std::istringstream in(dump);
+  std::string line, module;
+  Multiply cell;
+  bool in_mul = false;
+  static const std::regex module_line(R"(^module (\S+)$)");
+  static const std::regex cell_line(R"(^\s*cell (\S+) )");
+  static const std::regex width(R"(^\s*parameter \\([ABY])_WIDTH (\d+)$)");
+  std::smatch m;
+  while (std::getline(in, line)) {
+    if (std::regex_match(line, m, module_line)) {
+      module = strip_escape(m[1]);
+    } else if (std::regex_search(line, m, cell_line)) {
+      in_mul = m[1] == "$mul";
+      cell = {};
+    } else if (in_mul && std::regex_match(line, m, width)) {
+      (m[1] == "A" ? cell.a : m[1] == "B" ? cell.b : cell.product) = std::stoi(m[2]);
+    } else if (in_mul && line.find_first_not_of(' ') != std::string::npos &&
+               line.substr(line.find_first_not_of(' ')) == "end") {
+      if (cell.wider_than(out[module])) out[module] = cell;
+      in_mul = false;
+    }
+  }
+  return out;
+}
+
 namespace {
 
 struct Subtree {
@@ -124,6 +151,23 @@ std::string find_module(const std::map<std::string, ModuleStat>& modules, const 
   for (const auto& [name, stat] : modules)
     if (base_name(name) == base) return name;
   throw std::runtime_error(fmt::format("yosys statistics list no module '{}'", base));
+}
+
+// The widest multiply in a module's subtree (the hierarchy of `modules`),
+// submodules of base name `skip` left out (the reciprocal, a block of its own).
+Multiply widest_multiply(const std::map<std::string, ModuleStat>& modules,
+                         const std::map<std::string, Multiply>& own, const std::string& name,
+                         const std::string& skip = "") {
+  Multiply widest;
+  if (const auto m = own.find(name); m != own.end()) widest = m->second;
+  const auto it = modules.find(name);
+  if (it == modules.end()) return widest;
+  for (const auto& [sub, count] : it->second.submodules) {
+    if (base_name(sub) == skip) continue;
+    const Multiply w = widest_multiply(modules, own, sub, skip);
+    if (w.wider_than(widest)) widest = w;
+  }
+  return widest;
 }
 
 // The module's subtree, or nothing when the design does not have it.
@@ -354,7 +398,7 @@ std::string check_synthesis(const nlohmann::json& j) {
   if (!j.contains("blocks") || !j.at("blocks").is_array()) return "'blocks' is not a list";
   for (const nlohmann::json& b : j.at("blocks")) {
     if (!b.is_object() || !b.contains("name") || !b.at("name").is_string()) return "a block without a name";
-    for (const char* key : {"area_um2", "flops"})
+    for (const char* key : {"area_um2", "flops", "mul_a_bits", "mul_b_bits", "mul_product_bits"})
       if (std::string wrong = finite_non_negative(b, key); !wrong.empty())
         return fmt::format("block '{}': {}", b.at("name").get<std::string>(), wrong);
   }
@@ -362,7 +406,7 @@ std::string check_synthesis(const nlohmann::json& j) {
 }
 
 nlohmann::json block_areas(const std::map<std::string, ModuleStat>& unit, const UnitConfig& config,
-                           const std::string& log_path) {
+                           const std::string& log_path, const std::map<std::string, Multiply>& multiplies) {
   // Blocks: the scan unit's submodules by kind (the table is a black box),
   // each reciprocal counted apart from the block that holds it, and the
   // unit's own cells as control. They sum to the unit's logic. The adaptive
@@ -379,10 +423,12 @@ nlohmann::json block_areas(const std::map<std::string, ModuleStat>& unit, const 
       {"adaptive_split", "split engine"}};
   std::vector<std::string> order;
   std::map<std::string, Subtree> totals;
-  const auto add = [&](const std::string& name, double area, int64_t flops) {
+  std::map<std::string, Multiply> widest;
+  const auto add = [&](const std::string& name, double area, int64_t flops, const Multiply& multiply) {
     if (!totals.count(name)) order.push_back(name);
     totals[name].area += area;
     totals[name].flops += flops;
+    if (multiply.wider_than(widest[name])) widest[name] = multiply;
   };
   const std::function<void(const std::string&)> add_blocks = [&](const std::string& top) {
     for (const auto& [sub, count] : unit.at(top).submodules) {
@@ -396,20 +442,31 @@ nlohmann::json block_areas(const std::map<std::string, ModuleStat>& unit, const 
       if (it == block_of.end())
         throw std::runtime_error(fmt::format("area: no block for module '{}' in {}", base, log_path));
       Subtree t = subtree(unit, sub);
-      if (base == config.reciprocal_owner) {
+      const bool owner = base == config.reciprocal_owner;
+      if (owner) {
         t.area -= recip.area;
         t.flops -= recip.flops;
       }
-      add(it->second, static_cast<double>(count) * t.area, count * t.flops);
+      add(it->second, static_cast<double>(count) * t.area, count * t.flops,
+          widest_multiply(unit, multiplies, sub, owner ? "reciprocal" : ""));
     }
     const auto& control = unit.at(top);
-    add("control", control.own_area, control.own_flops);
+    const auto own = multiplies.find(top);
+    add("control", control.own_area, control.own_flops, own == multiplies.end() ? Multiply{} : own->second);
   };
   add_blocks(find_module(unit, config.top));
-  if (recip.area > 0) add("reciprocal", recip.area, recip.flops);
+  if (recip.area > 0) {
+    Multiply recip_widest;
+    for (const auto& [name, stat] : unit)
+      if (base_name(name) == "reciprocal")
+        if (const Multiply w = widest_multiply(unit, multiplies, name); w.wider_than(recip_widest)) recip_widest = w;
+    add("reciprocal", recip.area, recip.flops, recip_widest);
+  }
   nlohmann::json blocks = nlohmann::json::array();
   for (const std::string& name : order)
-    blocks.push_back({{"name", name}, {"area_um2", totals[name].area}, {"flops", totals[name].flops}});
+    blocks.push_back({{"name", name}, {"area_um2", totals[name].area}, {"flops", totals[name].flops},
+                      {"mul_a_bits", widest[name].a}, {"mul_b_bits", widest[name].b},
+                      {"mul_product_bits", widest[name].product}});
   return blocks;
 }
 
@@ -435,6 +492,9 @@ AreaReport area_report(const Design& design, const Widths& widths, const UnitCon
     block.name = b.at("name").get<std::string>();
     block.area_um2 = b.at("area_um2").get<double>();
     block.flops = b.at("flops").get<int64_t>();
+    block.mul_a_bits = b.at("mul_a_bits").get<int>();
+    block.mul_b_bits = b.at("mul_b_bits").get<int>();
+    block.mul_product_bits = b.at("mul_product_bits").get<int>();
     block.nand2_eq = block.area_um2 / nand2;
     report.logic_area_um2 += block.area_um2;
     report.blocks.push_back(block);
@@ -468,10 +528,10 @@ AreaReport synthesise_area(const Design& design, const Widths& widths, const Are
         "select -assert-none t:$dlatch t:$adlatch t:$dlatchsr t:$sr\n"
         "opt -fast\n"
         "select -assert-none t:$div t:$mod t:$divfloor t:$modfloor\n"
-        "wreduce\nalumacc\nopt -fast\nmemory -nomap\ntechmap\n"
+        "wreduce\ntee -q -o {W}/multiplies.il dump t:$mul\nalumacc\nopt -fast\nmemory -nomap\ntechmap\n"
         "dfflibmap -liberty {L}\nabc -fast -liberty {L}\nopt_clean\n"
         "select -assert-none t:$* t:$paramod* %d\n"
-        "stat -liberty {L}\n", fmt::arg("L", L)));
+        "stat -liberty {L}\n", fmt::arg("L", L), fmt::arg("W", work.string())));
     write_file_atomic(work / "table.ys", config.table_front(work) + fmt::format(
         "proc\nopt -fast\nmemory\nopt -fast\ntechmap\n"
         "dfflibmap -liberty {L}\nabc -fast -liberty {L}\nopt_clean\n"
@@ -490,7 +550,8 @@ AreaReport synthesise_area(const Design& design, const Widths& widths, const Are
     const auto unit = parse_stat(read_text_file(work / "unit.log"));
     const nlohmann::json result = {
         {"seconds", seconds},
-        {"blocks", block_areas(unit, config, (work / "unit.log").string())},
+        {"blocks", block_areas(unit, config, (work / "unit.log").string(),
+                               parse_multiplies(read_text_file(work / "multiplies.il")))},
         {"flop_table_lines", config.flop_lines},
         {"flop_table_area_um2",
          config.has_table ? table_area(parse_stat(read_text_file(work / "table.log"))) : 0.0},
@@ -512,7 +573,12 @@ nlohmann::json area_json(const AreaReport& r, const AreaOptions& options) {
   nlohmann::json blocks = nlohmann::json::array();
   for (const BlockArea& b : r.blocks)
     blocks.push_back({{"name", b.name}, {"area_um2", b.area_um2}, {"nand2_eq", b.nand2_eq},
-                      {"flops", b.flops}});
+                      {"flops", b.flops},
+                      {"widest_multiply", b.mul_product_bits < 0    ? nlohmann::json(nullptr)
+                                          : b.mul_product_bits == 0 ? nlohmann::json::object()
+                                                                    : nlohmann::json{{"a_bits", b.mul_a_bits},
+                                                                                     {"b_bits", b.mul_b_bits},
+                                                                                     {"product_bits", b.mul_product_bits}}}});
   return {{"design", r.design},
           {"widths", widths},
           {"blocks", blocks},
@@ -637,9 +703,14 @@ int run_area_command(const AreaOptions& options) {
                                        "elaborated in {:.0f} s)", r.log_path, r.synthesis_seconds)
              : r.cached  ? fmt::format("cached (synthesised in {:.0f} s)", r.synthesis_seconds)
                          : fmt::format("synthesised in {:.0f} s", r.synthesis_seconds));
-  fmt::print("\n{:<20} {:>14} {:>11} {:>8}\n", "block", "area um^2", "NAND2-eq", "flops");
+  fmt::print("\n{:<20} {:>14} {:>11} {:>8} {:>12}\n", "block", "area um^2", "NAND2-eq", "flops",
+             "widest mul");
   for (const BlockArea& b : r.blocks)
-    fmt::print("{:<20} {:>14.0f} {:>11.0f} {:>8}\n", b.name, b.area_um2, b.nand2_eq, b.flops);
+    fmt::print("{:<20} {:>14.0f} {:>11.0f} {:>8} {:>14}\n", b.name, b.area_um2, b.nand2_eq, b.flops,
+               b.mul_product_bits < 0    ? std::string("?")
+               : b.mul_product_bits == 0 ? std::string("-")
+                                         : fmt::format("{}x{}={}", b.mul_a_bits, b.mul_b_bits, b.mul_product_bits));
+  fmt::print("(widest mul: the block's multiply with the widest product, A x B = product bits, as Yosys sizes it before mapping)\n");
   fmt::print("{:<20} {:>14.0f}\n", "logic total", r.logic_area_um2);
   if (r.sram_bits == 0) {
     fmt::print("\nno scanline table\ntotal (logic): {:.0f} um^2\n", r.total_area_um2);

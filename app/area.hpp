@@ -20,6 +20,11 @@ struct BlockArea {
   double area_um2 = 0;
   double nand2_eq = 0;
   int64_t flops = 0;
+  // The multiply of the block with the widest product (Yosys's $mul after
+  // wreduce, before it is mapped; the larger A x B among equal products):
+  // operand and product bits. All 0: no multiply; all -1: not known (the
+  // component model's estimates).
+  int mul_a_bits = -1, mul_b_bits = -1, mul_product_bits = -1;
 };
 
 struct AreaReport {

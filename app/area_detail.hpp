@@ -81,9 +81,20 @@ UnitConfig prepare_unit(const Design& design, const Widths& widths, const AreaOp
 std::map<std::string, ModuleStat> parse_stat(const std::string& log);
 // "$paramod$0123\shift_round" -> "shift_round".
 std::string base_name(const std::string& module);
-// The per-block areas and flip-flops of a unit's statistics (JSON as cached).
+// A multiply's operand and product bits.
+struct Multiply {
+  int a = 0, b = 0, product = 0;
+  bool wider_than(const Multiply& o) const {
+    return product != o.product ? product > o.product : int64_t{a} * b > int64_t{o.a} * o.b;
+  }
+};
+// Each module's widest multiply, from Yosys's `dump t:$mul` (RTLIL text).
+std::map<std::string, Multiply> parse_multiplies(const std::string& dump);
+// The per-block areas and flip-flops of a unit's statistics (JSON as cached),
+// and each block's widest multiply from `multiplies` (by module, as
+// parse_multiplies gives them).
 nlohmann::json block_areas(const std::map<std::string, ModuleStat>& unit, const UnitConfig& config,
-                           const std::string& log_path);
+                           const std::string& log_path, const std::map<std::string, Multiply>& multiplies);
 double table_area(const std::map<std::string, ModuleStat>& table);
 // The report from cached block areas: SRAM, flop table scaled to full depth, totals.
 AreaReport area_report(const Design& design, const Widths& widths, const UnitConfig& config,

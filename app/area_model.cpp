@@ -328,12 +328,13 @@ AreaReport estimate_area(const Design& design, const Widths& widths, const AreaO
   const auto unit = predicted_stat(coarse.unit, *model, "unit");
   const nlohmann::json estimated = {
       {"seconds", coarse.seconds},
-      {"blocks", block_areas(unit, config, path)},
+      {"blocks", block_areas(unit, config, path, {})},
       {"flop_table_lines", config.flop_lines},
       {"flop_table_area_um2",
        config.has_table ? table_area(predicted_stat(coarse.table, *model, "flip-flop table")) : 0.0}};
   AreaReport report = area_report(design, widths, config, estimated, options);
   report.estimated = true;
+  for (BlockArea& b : report.blocks) b.mul_a_bits = b.mul_b_bits = b.mul_product_bits = -1;  // not sized here
   report.log_path = path;
   return report;
 }

@@ -240,11 +240,87 @@ TEST(AreaModel, RandomWidthsAreValidInRangeAndReproducible) {
 // The area cache (app/area.cpp): a result that its manifest does not vouch
 // for, or that makes no sense (a negative area), is said to be corrupt,
 // naming the file, and built again; never printed.
+// The widest multiply of each block: from Yosys's `dump t:$mul` after
+// wreduce, per module, then over each block's subtree, the fill's reciprocal
+// left to a block of its own. A hand-made hierarchy: the setup engine holds a
+// 12 x 10 multiply, the shared-multiplier bank (8 x 8, 16 bits) and the
+// reciprocal (20 x 20 = 40 bits, the widest of all, which is not the setup
+// engine's); the walker holds none; the unit itself a 24 x 24 = 48 one.
+TEST(AreaBlocks, TheWidestMultiplyOfEachBlockIsItsWidestProductInItsSubtree) {
+  namespace ad = cdsim::area_detail;
+  const std::string dump = R"(
+autoidx 9
+module $paramod$abc\setup_engine
+  cell $mul $mul$a
+    parameter \A_SIGNED 1
+    parameter \A_WIDTH 12
+    parameter \B_SIGNED 1
+    parameter \B_WIDTH 10
+    parameter \Y_WIDTH 22
+    connect \A \a
+  end
+  cell $mul $mul$b
+    parameter \A_WIDTH 30
+    parameter \B_WIDTH 2
+    parameter \Y_WIDTH 20
+  end
+end
+module \setup_multipliers
+  cell $mul $mul$c
+    parameter \A_WIDTH 8
+    parameter \B_WIDTH 8
+    parameter \Y_WIDTH 16
+  end
+end
+module $paramod$def\reciprocal
+  cell $mul $mul$d
+    parameter \A_WIDTH 20
+    parameter \B_WIDTH 20
+    parameter \Y_WIDTH 40
+  end
+end
+module \cd_scan_unit
+  cell $mul $mul$e
+    parameter \A_WIDTH 24
+    parameter \B_WIDTH 24
+    parameter \Y_WIDTH 48
+  end
+end
+)";
+  const auto multiplies = ad::parse_multiplies(dump);
+  ASSERT_EQ(multiplies.size(), 4u);
+  EXPECT_EQ(multiplies.at("$paramod$abc\\setup_engine").product, 22);  // 22 bits beat 20
+  EXPECT_EQ(multiplies.at("$paramod$abc\\setup_engine").a, 12);
+
+  std::map<std::string, ad::ModuleStat> unit;
+  unit["cd_scan_unit"].submodules = {{"$paramod$abc\\setup_engine", 1}, {"column_walker", 1}};
+  unit["$paramod$abc\\setup_engine"].submodules = {{"setup_multipliers", 1}, {"$paramod$def\\reciprocal", 1}};
+  unit["$paramod$abc\\setup_engine"].own_area = 100;
+  unit["setup_multipliers"].own_area = 10;
+  unit["$paramod$def\\reciprocal"].own_area = 5;
+  unit["column_walker"].own_area = 7;
+  ad::UnitConfig config;
+  config.top = "cd_scan_unit";
+  config.reciprocal_owner = "setup_engine";
+  std::map<std::string, nlohmann::json> blocks;
+  for (const auto& b : ad::block_areas(unit, config, "unit.log", multiplies))
+    blocks[b.at("name").get<std::string>()] = b;
+  ASSERT_EQ(blocks.size(), 4u);  // setup engine, column walker, control, reciprocal
+  EXPECT_EQ(blocks.at("setup engine").at("area_um2"), 110.0);
+  EXPECT_EQ(blocks.at("setup engine").at("mul_product_bits"), 22);
+  EXPECT_EQ(blocks.at("setup engine").at("mul_b_bits"), 10);
+  EXPECT_EQ(blocks.at("reciprocal").at("mul_product_bits"), 40);
+  EXPECT_EQ(blocks.at("column walker").at("mul_product_bits"), 0);
+  EXPECT_EQ(blocks.at("control").at("mul_a_bits"), 24);
+  EXPECT_EQ(blocks.at("control").at("mul_product_bits"), 48);
+}
+
 TEST(AreaCache, ACorruptOrNonsensicalResultIsNamedAndNotUsed) {
   namespace fs = std::filesystem;
   namespace ad = cdsim::area_detail;
   const nlohmann::json good = {{"seconds", 3.5},
-                               {"blocks", {{{"name", "control"}, {"area_um2", 120.0}, {"flops", 4}}}},
+                               {"blocks", {{{"name", "control"}, {"area_um2", 120.0}, {"flops", 4},
+                                            {"mul_a_bits", 0}, {"mul_b_bits", 0}, {"mul_product_bits", 0}}}},
                                {"flop_table_lines", 0},
                                {"flop_table_area_um2", 0.0}};
   EXPECT_EQ(ad::check_synthesis(good), "");

@@ -53,6 +53,22 @@ expect("correction adder" not in dv_blocks, "divide has no correction adder")
 expect(dv_blocks.get("reciprocal", 0) > 0 and dv_blocks.get("pixel multiply", 0) > 0, "divide has a pixel reciprocal and multiply")
 expect(dv_blocks.get("plane accumulators", 0) > 0, "divide has plane accumulators")
 expect(dv_blocks["setup engine"] < cd_blocks["setup engine"], "divide's setup engine has no slope divider, line range or fill")
+# The widest multiply of each block (Yosys's $mul after wreduce): none in the
+# walker, the contexts or the control; some in the setup engine, in divide's
+# pixel multiply and in cd-linear's correction adder (its du/dx steps); no
+# product wider than its operands' bits together (wreduce trims the rest).
+def widest(r):
+    return {b["name"]: b["widest_multiply"] for b in r["blocks"]}
+cd_mul, dv_mul = widest(cd), widest(dv)
+every = list(cd_mul.values()) + list(dv_mul.values())
+expect(all(isinstance(m, dict) for m in every), f"every block states its widest multiply ({cd_mul}, {dv_mul})")
+expect(all(cd_mul[b] == {} for b in ("column walker", "contexts", "control")),
+       "cd-linear: no multiply in the walker, contexts or control")
+expect(all(m["a_bits"] > 0 and m["b_bits"] > 0 and 0 < m["product_bits"] <= m["a_bits"] + m["b_bits"]
+           for m in every if m), "each widest multiply: a product of at most a + b bits")
+expect(bool(cd_mul["setup engine"]) and bool(dv_mul["setup engine"]), "both setup engines multiply")
+expect(bool(dv_mul["pixel multiply"]) and bool(cd_mul["correction adder"]),
+       "divide's pixel multiply and cd-linear's correction adder multiply")
 if long:
     expect(cp["sram_bits"] > cd["sram_bits"], f"cd-persp's table words hold eps ({cp['sram_bits']} bits against {cd['sram_bits']})")
     expect(cp_blocks["correction adder"] > cd_blocks["correction adder"], "cd-persp's correction adder has the weight's multiplies and ROM")
