@@ -106,7 +106,7 @@ std::string setup_schedule_defines(const SetupSchedule& s) {
     for (char& c : text) c = static_cast<char>(c >= 'a' && c <= 'z' ? c - 'a' + 'A' : c);
     return text;
   };
-  std::vector<int> start, multiplier, limbs_a, limbs_b, negate, result, first, last, result_bits;
+  std::vector<int> start, multiplier, limbs_a, limbs_b, a_bits, b_bits, negate, result, first, last, result_bits;
   for (size_t i = 0; i < s.terms.size(); ++i) {
     const SetupTerm& t = s.terms[i];
     const SetupResult& r = s.results[static_cast<size_t>(t.result)];
@@ -114,6 +114,8 @@ std::string setup_schedule_defines(const SetupSchedule& s) {
     multiplier.push_back(std::max(r.multiplier, 0));
     limbs_a.push_back(t.limbs_a);
     limbs_b.push_back(t.limbs_b);
+    a_bits.push_back(t.a_bits);
+    b_bits.push_back(t.b_bits);
     negate.push_back(t.negate);
     result.push_back(t.result);
     first.push_back(static_cast<int>(i) == r.first_term);
@@ -138,6 +140,8 @@ std::string setup_schedule_defines(const SetupSchedule& s) {
   out += fmt::format("`define CD_SETUP_TERM_MULTIPLIER {}\n", packed(multiplier, 8));
   out += fmt::format("`define CD_SETUP_TERM_LIMBS_A {}\n", packed(limbs_a, 8));
   out += fmt::format("`define CD_SETUP_TERM_LIMBS_B {}\n", packed(limbs_b, 8));
+  out += fmt::format("`define CD_SETUP_TERM_A_BITS {}\n", packed(a_bits, 8));
+  out += fmt::format("`define CD_SETUP_TERM_B_BITS {}\n", packed(b_bits, 8));
   out += fmt::format("`define CD_SETUP_TERM_NEGATE {}\n", packed(negate, 1));
   out += fmt::format("`define CD_SETUP_TERM_RESULT {}\n", packed(result, 8));
   out += fmt::format("`define CD_SETUP_TERM_FIRST {}\n", packed(first, 1));

@@ -42,6 +42,8 @@ module setup_multipliers #(
   localparam logic [8*TermCount-1:0]  TermMultiplier = `CD_SETUP_TERM_MULTIPLIER;
   localparam logic [8*TermCount-1:0]  TermLimbsA     = `CD_SETUP_TERM_LIMBS_A;
   localparam logic [8*TermCount-1:0]  TermLimbsB     = `CD_SETUP_TERM_LIMBS_B;
+  localparam logic [8*TermCount-1:0]  TermABits      = `CD_SETUP_TERM_A_BITS;
+  localparam logic [8*TermCount-1:0]  TermBBits      = `CD_SETUP_TERM_B_BITS;
   localparam logic [TermCount-1:0]    TermNegate     = `CD_SETUP_TERM_NEGATE;
   localparam logic [8*TermCount-1:0]  TermResult     = `CD_SETUP_TERM_RESULT;
   localparam logic [TermCount-1:0]    TermFirst      = `CD_SETUP_TERM_FIRST;
@@ -49,22 +51,33 @@ module setup_multipliers #(
   localparam logic [8*ResultCount-1:0] ResultBits    = `CD_SETUP_RESULT_BITS;
 
   if (Multipliers == 0) begin : gen_parallel
-    // One multiplier per product, each as wide as its result.
+    // One multiplier per product, its operands as wide as the term says (the
+    // bus carries them sign-extended, which synthesis cannot see through the
+    // port), its product as wide as its result.
     logic [TermCount*AccBits-1:0] product;
     for (genvar t = 0; t < TermCount; t++) begin : gen_product
-      localparam int Bits = 32'(ResultBits[8*TermResult[8*t +: 8] +: 8]);
-      logic signed [Bits-1:0] value;
-      assign value = Bits'($signed(a_i[ABits*t +: ABits])) * Bits'($signed(b_i[BBits*t +: BBits]));
-      assign product[AccBits*t +: AccBits] = TermNegate[t] ? -(AccBits'(value)) : AccBits'(value);
+      localparam int Bits  = 32'(ResultBits[8*TermResult[8*t +: 8] +: 8]);
+      localparam int ABitsT = 32'(TermABits[8*t +: 8]);
+      localparam int BBitsT = 32'(TermBBits[8*t +: 8]);
+      logic signed [Bits-1:0] value, term_value;
+      assign value = Bits'($signed(a_i[ABits*t +: ABitsT])) * Bits'($signed(b_i[BBits*t +: BBitsT]));
+      // Signed by the term at its own width, then sign-extended (wires, no logic).
+      assign term_value = TermNegate[t] ? -value : value;
+      assign product[AccBits*t +: AccBits] = AccBits'(term_value);
     end
-    always_comb begin
-      result_o = '0;
-      for (int t = 0; t < TermCount; t++)
-        result_o[AccBits*TermResult[8*t +: 8] +: AccBits] =
-            result_o[AccBits*TermResult[8*t +: 8] +: AccBits] + product[AccBits*t +: AccBits];
+    // Each sum as wide as its result: the bus's upper bits are its sign.
+    for (genvar r = 0; r < ResultCount; r++) begin : gen_sum
+      localparam int Bits = 32'(ResultBits[8*r +: 8]);
+      logic signed [Bits-1:0] sum;
+      always_comb begin
+        sum = '0;
+        for (int t = 0; t < TermCount; t++)
+          if (TermResult[8*t +: 8] == r) sum = sum + Bits'(product[AccBits*t +: AccBits]);
+      end
+      assign result_o[AccBits*r +: AccBits] = AccBits'(sum);
     end
     logic unused_shared;
-    assign unused_shared = ^{clk_i, hold_i, setup_i, stage_count_i};
+    assign unused_shared = ^{clk_i, hold_i, setup_i, stage_count_i, a_i, b_i};
   end else begin : gen_shared
     localparam int L = `CD_SETUP_MUL_BITS;
     localparam int PieceBits = `CD_SETUP_PIECE_BITS;
@@ -144,17 +157,18 @@ module setup_multipliers #(
       end
     end
 
-    // A result is registered from its multiplier after its last piece.
-    localparam int ResultIndexBits = $clog2(ResultCount);
-    logic [AccBits-1:0] result_q [ResultCount];
-    always_ff @(posedge clk_i) begin
-      for (int t = 0; t < TermCount; t++) begin
-        if (TermLast[t] && term_active[t] && term_last_piece[t] && !hold_i)
-          result_q[ResultIndexBits'(TermResult[8*t +: 8])] <= acc_next[AccBits*TermMultiplier[8*t +: 8] +: AccBits];
-      end
-    end
+    // A result is registered from its multiplier after its last piece, as
+    // wide as it is; the bus's upper bits are its sign.
     for (genvar r = 0; r < ResultCount; r++) begin : gen_result
-      assign result_o[AccBits*r +: AccBits] = result_q[r];
+      localparam int Bits = 32'(ResultBits[8*r +: 8]);
+      logic signed [Bits-1:0] result_q;
+      always_ff @(posedge clk_i) begin
+        for (int t = 0; t < TermCount; t++) begin
+          if (TermResult[8*t +: 8] == r && TermLast[t] && term_active[t] && term_last_piece[t] && !hold_i)
+            result_q <= Bits'(acc_next[AccBits*TermMultiplier[8*t +: 8] +: AccBits]);
+        end
+      end
+      assign result_o[AccBits*r +: AccBits] = AccBits'(result_q);
     end
   end
 
