@@ -211,7 +211,12 @@ CoarseResult coarse_pass(const UnitConfig& config) {
 std::map<std::string, AreaFeatures>::const_iterator coefficients_for(
     const std::map<std::string, AreaFeatures>& coefficients, const std::string& kind) {
   const auto it = coefficients.find(kind);
-  return it != coefficients.end() ? it : coefficients.find(kAnyKind);
+  if (it != coefficients.end()) return it;
+  // The setup engine's products moved into their own module (setup_multipliers)
+  // after the committed model's calibration, where they were the setup engine's
+  // own cells: until a calibration that has them, they take its coefficients.
+  if (kind == "setup_multipliers" && coefficients.count("setup_engine")) return coefficients.find("setup_engine");
+  return coefficients.find(kAnyKind);
 }
 
 double dot(const AreaFeatures& a, const AreaFeatures& b) {
