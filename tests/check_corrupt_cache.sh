@@ -15,6 +15,10 @@ shift 4
 export SYSTEMC_DISABLE_COPYRIGHT_MESSAGE=1
 rm -rf "$work" && mkdir -p -m 0700 "$work/cache"
 find "$source" -mindepth 1 -maxdepth 1 -type d ! -name 'tmp-*' ! -name 'failed-*' -exec cp -a {} "$work/cache/" \;
+# Another test may be building in the source cache right now (the adaptive
+# unit's bench, in a tmp-bench-* folder inside its entry): no work folder of
+# anyone else's in the copy, so that any left at the end is this regress's.
+find "$work/cache" -mindepth 2 -depth -name 'tmp-*' -exec rm -rf {} +
 # The source cache holds benches of other units and widths too (the adaptive
 # unit's, say), so every bench is truncated: whichever one these arguments
 # select must be named with its own size.
