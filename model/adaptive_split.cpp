@@ -119,12 +119,11 @@ AdaptiveSplit adaptive_split(const UnitTriangle& triangle, const Widths& w, int 
       m.big_v = (a.big_v + b.big_v) / 2;
       const Reciprocal r = reciprocal(m.q, w.recip_bits);
       if (r.out_of_range) out.flags |= flag::kDepthRange;
-      const int product_frac = w.recip_bits + r.exponent + w.uv_in_frac;
       bool saturated = false;
-      m.u = static_cast<int64_t>(fx::narrow(m.big_u * r.mantissa, product_frac, uv_format, fx::Round::Nearest,
-                                            fx::Overflow::Saturate, &saturated));
-      m.v = static_cast<int64_t>(fx::narrow(m.big_v * r.mantissa, product_frac, uv_format, fx::Round::Nearest,
-                                            fx::Overflow::Saturate, &saturated));
+      m.u = static_cast<int64_t>(
+          quotient(m.big_u, w.uv_in_frac, r, w.recip_bits, uv_format, w.quotient_guard_bits, &saturated));
+      m.v = static_cast<int64_t>(
+          quotient(m.big_v, w.uv_in_frac, r, w.recip_bits, uv_format, w.quotient_guard_bits, &saturated));
       if (saturated) out.flags |= flag::kOutputSaturated;
       split = split || misses(a.u, b.u, m.u) || misses(a.v, b.v, m.v);
     }

@@ -12,12 +12,11 @@ CorrectedValue divide_uv(const Setup& s, int64_t major_offset, int64_t minor_off
   fits_or_throw(at(s.v), s.pixel_uv_bits, "V at a pixel");
   const Reciprocal r = reciprocal(at(s.q), w.recip_bits);
   if (r.out_of_range) *flags |= flag::kDepthRange;
-  const int product_frac = w.recip_bits + r.exponent + w.uv_in_frac;
   CorrectedValue out;
-  out.u = static_cast<int64_t>(fx::narrow(at(s.u) * r.mantissa, product_frac, format,
-                                          fx::Round::Nearest, fx::Overflow::Saturate, &out.saturated));
-  out.v = static_cast<int64_t>(fx::narrow(at(s.v) * r.mantissa, product_frac, format,
-                                          fx::Round::Nearest, fx::Overflow::Saturate, &out.saturated));
+  out.u = static_cast<int64_t>(
+      quotient(at(s.u), w.uv_in_frac, r, w.recip_bits, format, w.quotient_guard_bits, &out.saturated));
+  out.v = static_cast<int64_t>(
+      quotient(at(s.v), w.uv_in_frac, r, w.recip_bits, format, w.quotient_guard_bits, &out.saturated));
   return out;
 }
 

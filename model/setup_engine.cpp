@@ -242,6 +242,15 @@ Reciprocal reciprocal(Wide q, int recip_bits) {
   return r;
 }
 
+Wide quotient(Wide numerator, int numerator_frac, const Reciprocal& r, int recip_bits, const fx::Format& format,
+              int guard_bits, bool* saturated) {
+  const fx::Format operand{format.int_bits + 1, format.frac_bits + guard_bits, true};
+  const Wide n = fx::narrow(numerator, numerator_frac + r.exponent, operand, fx::Round::Nearest,
+                            fx::Overflow::Saturate, saturated);
+  return fx::narrow(n * r.mantissa, recip_bits + operand.frac_bits, format, fx::Round::Nearest,
+                    fx::Overflow::Saturate, saturated);
+}
+
 TableEntry fill_line(const Setup& s, int64_t line, const Widths& w) {
   const Wide q = s.q.at_ref + Wide{line} * s.q.per_line;
   const Wide u = s.u.at_ref + Wide{line} * s.u.per_line;
@@ -250,12 +259,11 @@ TableEntry fill_line(const Setup& s, int64_t line, const Widths& w) {
   fits_or_throw(u, s.fill_uv_bits, "U on a table line");
   fits_or_throw(v, s.fill_uv_bits, "V on a table line");
   const Reciprocal r = reciprocal(q, w.recip_bits);
-  // U * (1/q) carries uv_in_frac fraction bits of texels, plus the reciprocal's.
-  const int product_frac = w.recip_bits + r.exponent + w.uv_in_frac;
+  // U / q: U carries uv_in_frac fraction bits of texels.
   bool saturated = false;
   const auto to = [&](Wide numerator, const fx::Format& format) {
-    return static_cast<int64_t>(fx::narrow(numerator * r.mantissa, product_frac, format,
-                                           fx::Round::Nearest, fx::Overflow::Saturate, &saturated));
+    return static_cast<int64_t>(
+        quotient(numerator, w.uv_in_frac, r, w.recip_bits, format, w.quotient_guard_bits, &saturated));
   };
   TableEntry e;
   e.t_u = to(u, w.t_format());
@@ -266,9 +274,8 @@ TableEntry fill_line(const Setup& s, int64_t line, const Widths& w) {
   if (s.persp) {
     // eps = q_line / q_k: the plane's step per line times the same reciprocal.
     const fx::Format eps_format{w.eps_int, w.eps_frac, true};
-    e.eps = static_cast<int64_t>(fx::narrow(s.q.per_line * r.mantissa, w.recip_bits + r.exponent,
-                                            eps_format, fx::Round::Nearest, fx::Overflow::Saturate,
-                                            &e.eps_saturated));
+    e.eps = static_cast<int64_t>(
+        quotient(s.q.per_line, 0, r, w.recip_bits, eps_format, w.quotient_guard_bits, &e.eps_saturated));
     if (e.eps == eps_format.min_raw()) {  // keep -eps in the format
       e.eps += 1;
       e.eps_saturated = true;

@@ -80,6 +80,19 @@ struct Reciprocal {
 };
 Reciprocal reciprocal(fx::Wide q, int recip_bits);
 
+// numerator 2^-numerator_frac / q, by the reciprocal r of q, to `format`
+// (round to nearest, saturate; *saturated is sticky). The numerator is first
+// narrowed to the format's fraction bits plus guard_bits and one integer bit
+// more than the format (its value is 1 to 2 times the quotient's, since
+// q lies in [2^e, 2^(e+1))): round to nearest, saturate, which only happens
+// where the quotient saturates too. Its product with the mantissa is then
+// rounded once more, by a constant shift. The first rounding adds at most
+// 2^-guard_bits of an ulp, and the product is (format bits + 1 + guard_bits)
+// x (recip_bits + 1) bits whatever the numerator's width (rtl/
+// reciprocal_product.sv; docs/choices.md).
+fx::Wide quotient(fx::Wide numerator, int numerator_frac, const Reciprocal& r, int recip_bits,
+                  const fx::Format& format, int guard_bits, bool* saturated);
+
 struct TableEntry {
   int64_t t_u = 0, t_v = 0;  // (u, v) where line k crosses the reference column, T format
   int64_t s_u = 0, s_v = 0;  // (u, v) step per column along the line, S format

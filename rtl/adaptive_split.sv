@@ -30,6 +30,7 @@ module adaptive_split #(
   parameter int Depth        = 3,   // adapt_depth
   parameter int BoundFrac    = 4,   // adapt_bound_frac
   parameter int UvExtra      = 4,   // adapt_uv_extra
+  parameter int GuardBits    = 4,   // quotient_guard_bits
   localparam int CoordBits     = 16 + SubpixelBits,
   localparam int LeafCoordBits = CoordBits + Depth,
   localparam int UvBits        = 16 + UvInFrac,
@@ -80,7 +81,10 @@ module adaptive_split #(
   // exponent holds both (q_bits 4 or recip_bits 32 refused the build).
   localparam int OperandQBits = NodeQBits + 1 > RecipBits + 1 ? NodeQBits + 1 : RecipBits + 1;
   localparam int ExpBits     = $clog2(OperandQBits) + 1;
-  localparam int ProductBits = BigBits + RecipBits + 2;
+  // A midpoint's U, V narrowed by e to LeafUvFrac + GuardBits fraction bits
+  // and one integer bit more than a leaf's (cdsim::quotient), then times R.
+  localparam int OperandBits = LeafUvBits + 1 + GuardBits;
+  localparam int ProductBits = OperandBits + RecipBits + 2;
   localparam int ShiftBits   = ExpBits + 8;
   localparam int DiffBits    = LeafCoordBits + 1;
   localparam int DetBits     = 2 * DiffBits;
@@ -224,27 +228,40 @@ module adaptive_split #(
 
   logic [1:0]                    result_index;
   logic [ExpBits-1:0]            result_exponent;
-  logic signed [ShiftBits-1:0]   result_shift;
+  logic signed [ShiftBits-1:0]   operand_shift;
+  logic signed [OperandBits-1:0] operand_u, operand_v;
   logic signed [ProductBits-1:0] product_u, product_v;
   logic signed [LeafUvBits-1:0]  result_u, result_v;
+  logic [1:0]                    operand_saturated;
   logic                          saturated_u, saturated_v;
+  localparam logic signed [ShiftBits-1:0] QuotientShift = ShiftBits'(RecipBits + GuardBits);
 
   always_comb begin
     result_index = recip_tag[ExpBits +: 2];
     result_exponent = recip_tag[ExpBits-1:0];
-    // U 2^-uv_in_frac * R 2^-(recip_bits + e), to LeafUvFrac fraction bits.
-    result_shift = ShiftBits'($signed({1'b0, result_exponent})) + ShiftBits'(RecipBits - UvExtra);
-    product_u = ProductBits'(mid_bu[result_index]) * ProductBits'($signed({1'b0, recip}));
-    product_v = ProductBits'(mid_bv[result_index]) * ProductBits'($signed({1'b0, recip}));
+    // U 2^-uv_in_frac, by e to LeafUvFrac + GuardBits fraction bits.
+    operand_shift = ShiftBits'($signed({1'b0, result_exponent})) - ShiftBits'(UvExtra + GuardBits);
   end
 
-  shift_round #(.InBits(ProductBits), .OutBits(LeafUvBits), .ShiftBits(ShiftBits),
-                .MaxLeft(UvExtra)) u_round_u (
-    .enable_i (recip_valid), .in_i (product_u), .shift_i (result_shift),
+  shift_round #(.InBits(BigBits), .OutBits(OperandBits), .ShiftBits(ShiftBits),
+                .MaxLeft(UvExtra + GuardBits)) u_operand_u (
+    .enable_i (recip_valid), .in_i (mid_bu[result_index]), .shift_i (operand_shift),
+    .out_o (operand_u), .saturated_o (operand_saturated[0]));
+  shift_round #(.InBits(BigBits), .OutBits(OperandBits), .ShiftBits(ShiftBits),
+                .MaxLeft(UvExtra + GuardBits)) u_operand_v (
+    .enable_i (recip_valid), .in_i (mid_bv[result_index]), .shift_i (operand_shift),
+    .out_o (operand_v), .saturated_o (operand_saturated[1]));
+
+  always_comb begin
+    product_u = ProductBits'(operand_u) * ProductBits'($signed({1'b0, recip}));
+    product_v = ProductBits'(operand_v) * ProductBits'($signed({1'b0, recip}));
+  end
+
+  shift_round #(.InBits(ProductBits), .OutBits(LeafUvBits), .ShiftBits(ShiftBits)) u_round_u (
+    .enable_i (recip_valid), .in_i (product_u), .shift_i (QuotientShift),
     .out_o (result_u), .saturated_o (saturated_u));
-  shift_round #(.InBits(ProductBits), .OutBits(LeafUvBits), .ShiftBits(ShiftBits),
-                .MaxLeft(UvExtra)) u_round_v (
-    .enable_i (recip_valid), .in_i (product_v), .shift_i (result_shift),
+  shift_round #(.InBits(ProductBits), .OutBits(LeafUvBits), .ShiftBits(ShiftBits)) u_round_v (
+    .enable_i (recip_valid), .in_i (product_v), .shift_i (QuotientShift),
     .out_o (result_v), .saturated_o (saturated_v));
 
   // ------------------------------------------------------------------ tests
@@ -431,7 +448,7 @@ module adaptive_split #(
           if (recip_valid) begin
             mid_u[result_index] <= result_u;
             mid_v[result_index] <= result_v;
-            if (saturated_u || saturated_v) flags_q[1] <= 1'b1;
+            if (saturated_u || saturated_v || |operand_saturated) flags_q[1] <= 1'b1;
             if (recip_tag[ExpBits + 2]) flags_q[0] <= 1'b1;
           end
           if (eval_count_q == 8'(RecipLatency + 4)) begin

@@ -133,7 +133,8 @@ module adaptive_unit #(
     .RecipLatency (`CD_RECIP_LATENCY),
     .Depth        (Depth),
     .BoundFrac    (`CD_ADAPT_BOUND_FRAC),
-    .UvExtra      (UvExtra)
+    .UvExtra      (UvExtra),
+    .GuardBits    (`CD_QUOTIENT_GUARD_BITS)
   ) u_split (
     .clk_i             (clk_i),
     .rst_ni            (rst_ni),

@@ -1,9 +1,11 @@
 // Per-pixel perspective divide: u = U / q and v = V / q at one pixel per
 // cycle, by the pipelined reciprocal and two multiplies. Twin of divide_uv
-// (model/divide_datapath.cpp): R = reciprocal(q), then U R and V R read with
-// RecipBits + e + UvInFrac fraction bits, rounded to nearest and saturated to
-// OutBits with OutFrac fraction bits (the output format for divide; the
-// affine accumulator's format for the end points of affine-subN).
+// (model/divide_datapath.cpp, cdsim::quotient): R = reciprocal(q); U and V
+// narrowed by e at issue to OutFrac + guard fraction bits and one integer bit
+// more than OutBits (round to nearest, saturate); their products with R read
+// with RecipBits + OutFrac + guard fraction bits, rounded to nearest and
+// saturated to OutBits with OutFrac fraction bits (the output format for
+// divide; the affine accumulator's format for the end points of affine-subN).
 //
 // Latency CD_RECIP_LATENCY advancing cycles; advance_i = 0 (a stall) holds
 // every stage and the output. tag_o travels with the pixel.
@@ -36,16 +38,23 @@ module pixel_divide #(
   localparam int RecipBits    = `CD_RECIP_BITS;
   localparam int UvInFrac     = `CD_UV_IN_FRAC;
   localparam int ExponentBits = `CD_EXPONENT_BITS;
-  localparam int ProductBits  = UvBits + RecipBits + 2;
-  localparam int ShiftBits    = 10;  // e + rb + uv_in_frac - out_frac lies in (-64, 256)
-  localparam int MaxLeft      = OutFrac > RecipBits + UvInFrac ? OutFrac - RecipBits - UvInFrac : 0;
-  localparam int PipeTagBits  = TagBits + 1 + ExponentBits + 2 * UvBits;
+  localparam int Guard        = `CD_QUOTIENT_GUARD_BITS;
+  localparam int OperandBits  = OutBits + 1 + Guard;
+  localparam int OperandFrac  = OutFrac + Guard;
+  localparam int ProductBits  = OperandBits + RecipBits + 2;
+  localparam int ShiftBits    = 10;  // e + uv_in_frac - out_frac - guard lies in (-64, 256)
+  localparam int MaxLeft      = OperandFrac > UvInFrac ? OperandFrac - UvInFrac : 0;  // at e = 0
+  localparam logic signed [ShiftBits-1:0] QuotientShift = ShiftBits'(RecipBits + Guard);
+  localparam int PipeTagBits  = TagBits + 1 + 2 * OperandBits + 1;
 
   logic                    depth_out;
   logic [ExponentBits-1:0] exponent;
   logic [RecipBits:0]      mantissa, recip;
   logic [PipeTagBits-1:0]  issue_tag, result_tag;
   logic                    result_valid;
+  logic signed [ShiftBits-1:0]   issue_shift;
+  logic signed [OperandBits-1:0] issue_u, issue_v;
+  logic [1:0]                    issue_saturated;
 
   reciprocal_operand #(
     .QBits(QBits), .RecipBits(RecipBits), .ExponentBits(ExponentBits)
@@ -56,7 +65,12 @@ module pixel_divide #(
     .exponent_o (exponent),
     .mantissa_o (mantissa)
   );
-  assign issue_tag = valid_i ? {tag_i, depth_out, exponent, u_i, v_i} : '0;
+  assign issue_shift = ShiftBits'($signed({1'b0, exponent})) + ShiftBits'(UvInFrac - OperandFrac);
+  shift_round #(.InBits(UvBits), .OutBits(OperandBits), .ShiftBits(ShiftBits), .MaxLeft(MaxLeft))
+    u_operand_u (.enable_i(valid_i), .in_i(u_i), .shift_i(issue_shift), .out_o(issue_u), .saturated_o(issue_saturated[0]));
+  shift_round #(.InBits(UvBits), .OutBits(OperandBits), .ShiftBits(ShiftBits), .MaxLeft(MaxLeft))
+    u_operand_v (.enable_i(valid_i), .in_i(v_i), .shift_i(issue_shift), .out_o(issue_v), .saturated_o(issue_saturated[1]));
+  assign issue_tag = valid_i ? {tag_i, depth_out, issue_u, issue_v, |issue_saturated} : '0;
 
   reciprocal #(
     .RecipBits(RecipBits), .Latency(`CD_RECIP_LATENCY), .TagBits(PipeTagBits)
@@ -71,36 +85,33 @@ module pixel_divide #(
     .tag_o     (result_tag)
   );
 
-  logic [ExponentBits-1:0]       result_exponent;
-  logic signed [UvBits-1:0]      result_u, result_v;
+  logic signed [OperandBits-1:0] result_u, result_v;
+  logic                          operand_saturated;
   logic signed [ProductBits-1:0] product_u, product_v;
-  logic signed [ShiftBits-1:0]   shift;
   logic [1:0]                    saturated;
 
   always_comb begin
     tag_o = '0;
     depth_out_o = 1'b0;
-    result_exponent = '0;
     result_u = '0;
     result_v = '0;
+    operand_saturated = 1'b0;
     product_u = '0;
     product_v = '0;
-    shift = '0;
     if (result_valid) begin
-      {tag_o, depth_out_o, result_exponent, result_u, result_v} = result_tag;
+      {tag_o, depth_out_o, result_u, result_v, operand_saturated} = result_tag;
       product_u = ProductBits'(result_u) * ProductBits'($signed({1'b0, recip}));
       product_v = ProductBits'(result_v) * ProductBits'($signed({1'b0, recip}));
-      shift = ShiftBits'($signed({1'b0, result_exponent})) + ShiftBits'(RecipBits + UvInFrac - OutFrac);
     end
   end
 
-  shift_round #(.InBits(ProductBits), .OutBits(OutBits), .ShiftBits(ShiftBits), .MaxLeft(MaxLeft))
-    u_narrow_u (.enable_i(result_valid), .in_i(product_u), .shift_i(shift), .out_o(u_o), .saturated_o(saturated[0]));
-  shift_round #(.InBits(ProductBits), .OutBits(OutBits), .ShiftBits(ShiftBits), .MaxLeft(MaxLeft))
-    u_narrow_v (.enable_i(result_valid), .in_i(product_v), .shift_i(shift), .out_o(v_o), .saturated_o(saturated[1]));
+  shift_round #(.InBits(ProductBits), .OutBits(OutBits), .ShiftBits(ShiftBits))
+    u_narrow_u (.enable_i(result_valid), .in_i(product_u), .shift_i(QuotientShift), .out_o(u_o), .saturated_o(saturated[0]));
+  shift_round #(.InBits(ProductBits), .OutBits(OutBits), .ShiftBits(ShiftBits))
+    u_narrow_v (.enable_i(result_valid), .in_i(product_v), .shift_i(QuotientShift), .out_o(v_o), .saturated_o(saturated[1]));
 
   assign valid_o = result_valid;
-  assign saturated_o = |saturated;
+  assign saturated_o = |saturated || operand_saturated;
 
 endmodule
 

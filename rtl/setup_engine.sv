@@ -182,16 +182,29 @@ module setup_engine #(
   localparam int FreeBits     = DiffBits - 1;                // |free coefficient|
   localparam int BoundNumBits = EdgeNBits - SubpixelBits;    // |N0 >> sp|
   localparam int LineRangeBits = KappaBits - SubpixelBits - GFrac + 3;
-  localparam int ProductTBits = FillUvBits + RecipBits + 2;  // U_k R
-  localparam int ProductSBits = StepUvBits + RecipBits + 2;  // SU R
-  localparam int ProductShiftBits = 10;  // e + rb + uv_in_frac - t_frac lies in (-64, 256)
-  localparam int MaxTLeft = TFrac > RecipBits + UvInFrac ? TFrac - RecipBits - UvInFrac : 0;
-  localparam int MaxSLeft = SFrac > RecipBits + UvInFrac ? SFrac - RecipBits - UvInFrac : 0;
-  localparam int MaxPlaneLeft = PlaneBits + 2;
+  // The fill's quotients (cdsim::quotient): each numerator narrowed by the
+  // line's exponent e to its format's fraction bits plus Guard, and one
+  // integer bit more; its product with the reciprocal read with RecipBits +
+  // that many fraction bits, so rounded by the constant QuotientShift.
+  localparam int Guard        = `CD_QUOTIENT_GUARD_BITS;
   localparam int EpsFrac      = `CD_EPS_FRAC;
   localparam int EpsBits      = `CD_EPS_BITS;
-  localparam int ProductEpsBits = PlaneStepQBits + RecipBits + 2;  // q_line R
-  localparam int MaxEpsLeft = EpsFrac > RecipBits ? EpsFrac - RecipBits : 0;
+  localparam int OperandTBits = TBits + 1 + Guard;
+  localparam int OperandSBits = SBits + 1 + Guard;
+  localparam int OperandEpsBits = EpsBits + 1 + Guard;
+  localparam int OperandTFrac = TFrac + Guard;
+  localparam int OperandSFrac = SFrac + Guard;
+  localparam int OperandEpsFrac = EpsFrac + Guard;
+  localparam int ProductTBits = OperandTBits + RecipBits + 2;      // U_k R
+  localparam int ProductSBits = OperandSBits + RecipBits + 2;      // SU R
+  localparam int ProductEpsBits = OperandEpsBits + RecipBits + 2;  // q_line R
+  localparam int ProductShiftBits = 10;  // e + uv_in_frac - frac - guard lies in (-64, 256)
+  localparam logic signed [ProductShiftBits-1:0] QuotientShift = ProductShiftBits'(RecipBits + Guard);
+  // The largest left shifts of the numerators (at e = 0).
+  localparam int MaxTLeft = OperandTFrac > UvInFrac ? OperandTFrac - UvInFrac : 0;
+  localparam int MaxSLeft = OperandSFrac > UvInFrac ? OperandSFrac - UvInFrac : 0;
+  localparam int MaxEpsLeft = OperandEpsFrac;
+  localparam int MaxPlaneLeft = PlaneBits + 2;
 
   localparam int FlagDepthRange = `CD_FLAG_DEPTH_RANGE;
 
@@ -1234,14 +1247,20 @@ module setup_engine #(
     end
 
     // Issue: q <= 0 raises depth_range and uses q = 1; e = bitlen(q) - 1; the
-    // mantissa keeps RecipBits fraction bits, truncated.
-    localparam int TagBits = AddrBits + 1 + ExponentBits + 2 * FillUvBits;
+    // mantissa keeps RecipBits fraction bits, truncated. U and V on the line
+    // are narrowed by e at once (cdsim::quotient: to t_frac + guard fraction
+    // bits, round to nearest, saturate), so that the reciprocal pipeline
+    // carries them at the width of their product, not the fill's.
+    localparam int TagBits = AddrBits + 1 + ExponentBits + 2 * OperandTBits + 1;
     logic                       depth_out;
     logic [ExponentBits-1:0]    exponent;
     logic [RecipBits:0]         mantissa;
     logic [TagBits-1:0]         issue_tag, result_tag;
     logic                       result_valid;
     logic [RecipBits:0]         recip;
+    logic signed [ProductShiftBits-1:0] issue_shift_t;
+    logic signed [OperandTBits-1:0] issue_tu, issue_tv;
+    logic [1:0]                 issue_saturated;
 
     reciprocal_operand #(
       .QBits(FillQBits), .RecipBits(RecipBits), .ExponentBits(ExponentBits)
@@ -1252,7 +1271,14 @@ module setup_engine #(
       .exponent_o (exponent),
       .mantissa_o (mantissa)
     );
-    assign issue_tag = fill_valid_i ? {fill_addr_i, depth_out, exponent, u_line_q, v_line_q} : '0;
+    assign issue_shift_t = ProductShiftBits'($signed({1'b0, exponent})) + ProductShiftBits'(UvInFrac - OperandTFrac);
+    shift_round #(.InBits(FillUvBits), .OutBits(OperandTBits), .ShiftBits(ProductShiftBits), .MaxLeft(MaxTLeft))
+      u_operand_tu (.enable_i(fill_valid_i), .in_i(u_line_q), .shift_i(issue_shift_t), .out_o(issue_tu),
+                    .saturated_o(issue_saturated[0]));
+    shift_round #(.InBits(FillUvBits), .OutBits(OperandTBits), .ShiftBits(ProductShiftBits), .MaxLeft(MaxTLeft))
+      u_operand_tv (.enable_i(fill_valid_i), .in_i(v_line_q), .shift_i(issue_shift_t), .out_o(issue_tv),
+                    .saturated_o(issue_saturated[1]));
+    assign issue_tag = fill_valid_i ? {fill_addr_i, depth_out, exponent, issue_tu, issue_tv, |issue_saturated} : '0;
 
     reciprocal #(
       .RecipBits(RecipBits), .Latency(`CD_RECIP_LATENCY), .TagBits(TagBits)
@@ -1267,74 +1293,88 @@ module setup_engine #(
       .tag_o     (result_tag)
     );
 
-    // Result: T = U_k R, S = SU R, read with RecipBits + e + uv_in_frac fraction
-    // bits and narrowed to their formats (round to nearest, saturate, flag).
-    logic [AddrBits-1:0]           result_addr;
-    logic                          result_depth_out;
-    logic [ExponentBits-1:0]       result_exponent;
-    logic signed [FillUvBits-1:0]  result_u, result_v;
-    logic signed [ProductTBits-1:0] product_tu, product_tv;
-    logic signed [ProductSBits-1:0] product_su, product_sv;
-    logic signed [ProductShiftBits-1:0] shift_t, shift_s;
-    logic signed [TBits-1:0]       t_u, t_v;
-    logic signed [SBits-1:0]       s_u, s_v;
-    logic [3:0]                    entry_saturated;
+    // Result: S's numerators narrowed by e as U and V were; then T = U_k R and
+    // S = SU R, each read with RecipBits + frac + guard fraction bits and
+    // rounded to its format by a constant shift (round to nearest, saturate,
+    // flag).
+    logic [AddrBits-1:0]              result_addr;
+    logic                             result_depth_out;
+    logic [ExponentBits-1:0]          result_exponent;
+    logic signed [OperandTBits-1:0]   operand_tu, operand_tv;
+    logic                             operand_t_saturated;
+    logic signed [OperandSBits-1:0]   operand_su, operand_sv;
+    logic signed [ProductTBits-1:0]   product_tu, product_tv;
+    logic signed [ProductSBits-1:0]   product_su, product_sv;
+    logic signed [ProductShiftBits-1:0] shift_s;
+    logic signed [TBits-1:0]          t_u, t_v;
+    logic signed [SBits-1:0]          s_u, s_v;
+    logic [5:0]                       entry_saturated;
 
     always_comb begin
-      result_addr = '0;
-      result_depth_out = '0;
-      result_exponent = '0;
-      result_u = '0;
-      result_v = '0;
+      {result_addr, result_depth_out, result_exponent, operand_tu, operand_tv, operand_t_saturated} =
+          result_valid ? result_tag : '0;
+      shift_s = result_valid ? ProductShiftBits'($signed({1'b0, result_exponent})) + ProductShiftBits'(UvInFrac - OperandSFrac)
+                             : '0;
+    end
+    shift_round #(.InBits(StepUvBits), .OutBits(OperandSBits), .ShiftBits(ProductShiftBits), .MaxLeft(MaxSLeft))
+      u_operand_su (.enable_i(result_valid), .in_i(fill_step_u), .shift_i(shift_s), .out_o(operand_su),
+                    .saturated_o(entry_saturated[4]));
+    shift_round #(.InBits(StepUvBits), .OutBits(OperandSBits), .ShiftBits(ProductShiftBits), .MaxLeft(MaxSLeft))
+      u_operand_sv (.enable_i(result_valid), .in_i(fill_step_v), .shift_i(shift_s), .out_o(operand_sv),
+                    .saturated_o(entry_saturated[5]));
+
+    always_comb begin
       product_tu = '0;
       product_tv = '0;
       product_su = '0;
       product_sv = '0;
-      shift_t = '0;
-      shift_s = '0;
       if (result_valid) begin
-        {result_addr, result_depth_out, result_exponent, result_u, result_v} = result_tag;
-        product_tu = ProductTBits'(result_u) * ProductTBits'($signed({1'b0, recip}));
-        product_tv = ProductTBits'(result_v) * ProductTBits'($signed({1'b0, recip}));
-        product_su = ProductSBits'(fill_step_u) * ProductSBits'($signed({1'b0, recip}));
-        product_sv = ProductSBits'(fill_step_v) * ProductSBits'($signed({1'b0, recip}));
-        shift_t = ProductShiftBits'($signed({1'b0, result_exponent})) + ProductShiftBits'(RecipBits + UvInFrac - TFrac);
-        shift_s = ProductShiftBits'($signed({1'b0, result_exponent})) + ProductShiftBits'(RecipBits + UvInFrac - SFrac);
+        product_tu = ProductTBits'(operand_tu) * ProductTBits'($signed({1'b0, recip}));
+        product_tv = ProductTBits'(operand_tv) * ProductTBits'($signed({1'b0, recip}));
+        product_su = ProductSBits'(operand_su) * ProductSBits'($signed({1'b0, recip}));
+        product_sv = ProductSBits'(operand_sv) * ProductSBits'($signed({1'b0, recip}));
       end
     end
 
-    shift_round #(.InBits(ProductTBits), .OutBits(TBits), .ShiftBits(ProductShiftBits), .MaxLeft(MaxTLeft))
-      u_narrow_tu (.enable_i(result_valid), .in_i(product_tu), .shift_i(shift_t), .out_o(t_u), .saturated_o(entry_saturated[0]));
-    shift_round #(.InBits(ProductTBits), .OutBits(TBits), .ShiftBits(ProductShiftBits), .MaxLeft(MaxTLeft))
-      u_narrow_tv (.enable_i(result_valid), .in_i(product_tv), .shift_i(shift_t), .out_o(t_v), .saturated_o(entry_saturated[1]));
-    shift_round #(.InBits(ProductSBits), .OutBits(SBits), .ShiftBits(ProductShiftBits), .MaxLeft(MaxSLeft))
-      u_narrow_su (.enable_i(result_valid), .in_i(product_su), .shift_i(shift_s), .out_o(s_u), .saturated_o(entry_saturated[2]));
-    shift_round #(.InBits(ProductSBits), .OutBits(SBits), .ShiftBits(ProductShiftBits), .MaxLeft(MaxSLeft))
-      u_narrow_sv (.enable_i(result_valid), .in_i(product_sv), .shift_i(shift_s), .out_o(s_v), .saturated_o(entry_saturated[3]));
+    shift_round #(.InBits(ProductTBits), .OutBits(TBits), .ShiftBits(ProductShiftBits))
+      u_narrow_tu (.enable_i(result_valid), .in_i(product_tu), .shift_i(QuotientShift), .out_o(t_u),
+                   .saturated_o(entry_saturated[0]));
+    shift_round #(.InBits(ProductTBits), .OutBits(TBits), .ShiftBits(ProductShiftBits))
+      u_narrow_tv (.enable_i(result_valid), .in_i(product_tv), .shift_i(QuotientShift), .out_o(t_v),
+                   .saturated_o(entry_saturated[1]));
+    shift_round #(.InBits(ProductSBits), .OutBits(SBits), .ShiftBits(ProductShiftBits))
+      u_narrow_su (.enable_i(result_valid), .in_i(product_su), .shift_i(QuotientShift), .out_o(s_u),
+                   .saturated_o(entry_saturated[2]));
+    shift_round #(.InBits(ProductSBits), .OutBits(SBits), .ShiftBits(ProductShiftBits))
+      u_narrow_sv (.enable_i(result_valid), .in_i(product_sv), .shift_i(QuotientShift), .out_o(s_v),
+                   .saturated_o(entry_saturated[3]));
 
-    // cd-persp: eps = q_line R read with RecipBits + e fraction bits, to
-    // s2.eps_frac (round to nearest, saturate); its most negative code is
-    // moved up by one, so that -eps fits as well, and flagged.
+    // cd-persp: eps = q_line R: q_line narrowed by e to eps_frac + guard
+    // fraction bits, its product read with RecipBits + eps_frac + guard
+    // fraction bits, to s2.eps_frac (round to nearest, saturate); its most
+    // negative code is moved up by one, so that -eps fits as well, and flagged.
     logic signed [EpsBits-1:0] eps, eps_rounded;
     logic                      eps_saturated;
     if (HasPersp) begin : gen_eps
+      logic signed [OperandEpsBits-1:0]   operand_eps;
       logic signed [ProductEpsBits-1:0]   product_eps;
       logic signed [ProductShiftBits-1:0] shift_eps;
-      logic                               eps_overflow;
+      logic [1:0]                         eps_overflow;
+      assign shift_eps = result_valid ? ProductShiftBits'($signed({1'b0, result_exponent})) - ProductShiftBits'(OperandEpsFrac)
+                                      : '0;
+      shift_round #(.InBits(PlaneStepQBits), .OutBits(OperandEpsBits), .ShiftBits(ProductShiftBits), .MaxLeft(MaxEpsLeft))
+        u_operand_eps (.enable_i(result_valid), .in_i(fill_q_per_line), .shift_i(shift_eps), .out_o(operand_eps),
+                       .saturated_o(eps_overflow[0]));
       always_comb begin
         product_eps = '0;
-        shift_eps = '0;
-        if (result_valid) begin
-          product_eps = ProductEpsBits'(fill_q_per_line) * ProductEpsBits'($signed({1'b0, recip}));
-          shift_eps = ProductShiftBits'($signed({1'b0, result_exponent})) + ProductShiftBits'(RecipBits - EpsFrac);
-        end
+        if (result_valid) product_eps = ProductEpsBits'(operand_eps) * ProductEpsBits'($signed({1'b0, recip}));
       end
-      shift_round #(.InBits(ProductEpsBits), .OutBits(EpsBits), .ShiftBits(ProductShiftBits), .MaxLeft(MaxEpsLeft))
-        u_narrow_eps (.enable_i(result_valid), .in_i(product_eps), .shift_i(shift_eps), .out_o(eps_rounded),
-                      .saturated_o(eps_overflow));
+      shift_round #(.InBits(ProductEpsBits), .OutBits(EpsBits), .ShiftBits(ProductShiftBits))
+        u_narrow_eps (.enable_i(result_valid), .in_i(product_eps), .shift_i(QuotientShift), .out_o(eps_rounded),
+                      .saturated_o(eps_overflow[1]));
       always_comb begin
         eps = eps_rounded;
-        eps_saturated = eps_overflow;
+        eps_saturated = |eps_overflow;
         if (eps_rounded == {1'b1, {(EpsBits - 1){1'b0}}}) begin
           eps = eps_rounded + EpsBits'(1);
           eps_saturated = 1'b1;
@@ -1352,7 +1392,7 @@ module setup_engine #(
       write_entry_o[`CD_WORD_TV_LSB +: TBits] = t_v;
       write_entry_o[`CD_WORD_SU_LSB +: SBits] = s_u;
       write_entry_o[`CD_WORD_SV_LSB +: SBits] = s_v;
-      write_entry_o[`CD_WORD_SATURATED_BIT] = |entry_saturated;
+      write_entry_o[`CD_WORD_SATURATED_BIT] = |entry_saturated || operand_t_saturated;
       write_entry_o[`CD_WORD_DEPTH_RANGE_BIT] = result_depth_out;
       if (HasPersp) begin
         write_entry_o[`CD_WORD_EPS_LSB +: EpsBits] = eps;

@@ -216,3 +216,64 @@ TEST(Accuracy, QuadraticSubdivisionIsExactAtItsPoints) {
 
 }  // namespace
 }  // namespace cdsim
+
+namespace cdsim {
+namespace {
+
+// cdsim::quotient (T, S, eps and divide's u, v): the numerator rounded to
+// quotient_guard_bits beyond the format first, then its product with the
+// reciprocal rounded again. Against x = numerator R 2^-(frac + rb + e), the
+// value with the same reciprocal held exactly (a long double of 64 bits of
+// mantissa for products of at most 60 bits): within half an ulp plus
+// 2^-(guard + 1) of one, saturated (and flagged) only where x leaves the format,
+// and equal to x rounded once when the numerator has no bit below the guard.
+TEST(Quotient, IsTheProductWithTheReciprocalWithinHalfAnUlpAndTheGuard) {
+  std::mt19937_64 rng(37);
+  int64_t compared = 0, saturated_seen = 0, exact_operands = 0;
+  for (int guard : {0, 2, 4, 8}) {
+    for (int n = 0; n < 20000; ++n) {
+      const fx::Format format{static_cast<int>(4 + rng() % 14), static_cast<int>(rng() % 16), true};
+      const int recip_bits = static_cast<int>(8 + rng() % 17);
+      const int numerator_frac = static_cast<int>(rng() % 9);
+      const fx::Wide q = static_cast<fx::Wide>(1 + rng() % (uint64_t{1} << (1 + rng() % 40)));
+      const Reciprocal r = reciprocal(q, recip_bits);
+      // Numerators around q times the format's range, so that some saturate.
+      const int numerator_bits = fx::bit_length(q) + format.int_bits + numerator_frac + static_cast<int>(rng() % 3);
+      fx::Wide numerator = static_cast<fx::Wide>(rng() % (uint64_t{1} << std::min(numerator_bits, 62)));
+      if (rng() % 2) numerator = -numerator;
+      bool saturated = false;
+      const fx::Wide got = quotient(numerator, numerator_frac, r, recip_bits, format, guard, &saturated);
+      const long double x = std::ldexp(static_cast<long double>(numerator) * static_cast<long double>(r.mantissa),
+                                       -(numerator_frac + recip_bits + r.exponent));
+      const long double ulp = std::ldexp(1.0L, -format.frac_bits);
+      const long double got_value = std::ldexp(static_cast<long double>(got), -format.frac_bits);
+      const long double hi = static_cast<long double>(format.max_raw()) * ulp;
+      const long double lo = static_cast<long double>(format.min_raw()) * ulp;
+      // The numerator's rounding moves x by at most half its last place times
+      // R 2^-rb <= 1: 2^-(guard + 1) ulp.
+      const long double slack = ulp * (0.5L + std::ldexp(1.0L, -guard - 1) + 0x1p-40L);
+      ++compared;
+      if (saturated) {
+        ++saturated_seen;
+        ASSERT_TRUE(got == format.max_raw() || got == format.min_raw());
+        ASSERT_TRUE(x > hi - slack || x < lo + slack) << "x " << static_cast<double>(x);
+        continue;
+      }
+      ASSERT_LE(std::fabs(got_value - x), slack)
+          << "guard " << guard << ", numerator " << static_cast<double>(numerator) << ", q " << static_cast<double>(q);
+      const int dropped = numerator_frac + r.exponent - format.frac_bits - guard;
+      if (dropped <= 0 || numerator % (fx::Wide{1} << dropped) == 0) {
+        ++exact_operands;
+        bool once_saturated = false;
+        ASSERT_EQ(got, fx::narrow(numerator * r.mantissa, numerator_frac + recip_bits + r.exponent, format,
+                                  fx::Round::Nearest, fx::Overflow::Saturate, &once_saturated));
+      }
+    }
+  }
+  EXPECT_GT(saturated_seen, 1000);
+  EXPECT_GT(exact_operands, 1000);
+  EXPECT_EQ(compared, 80000);
+}
+
+}  // namespace
+}  // namespace cdsim

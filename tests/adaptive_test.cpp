@@ -82,12 +82,14 @@ TEST(Adaptive, LeavesTileTheTriangleExactly) {
   EXPECT_GT(split_triangles, 60);  // the bound 2^-12 splits nearly every one
 }
 
-TEST(Adaptive, LeafVerticesAreThePerspectiveCorrectValuesRoundedOnce) {
+TEST(Adaptive, LeafVerticesAreThePerspectiveCorrectValuesWithinHalfAnLsbAndTheGuard) {
   const Widths w = adaptive_widths(3, 12);
   const Widths leaf = adaptive_leaf_widths(w);
-  // Half an LSB at the leaves' uv_in_frac, plus the 32-bit reciprocal's and
-  // 1/w's quantisation (relative 2^-30 of |u| < 2^7).
-  const long double tolerance = std::ldexp(1.0L, -leaf.uv_in_frac - 1) + std::ldexp(1.0L, -23);
+  // Half an LSB at the leaves' uv_in_frac, the numerator's rounding to
+  // quotient_guard_bits more (2^-guard of an LSB), plus the 32-bit
+  // reciprocal's and 1/w's quantisation (relative 2^-30 of |u| < 2^7).
+  const long double tolerance = std::ldexp(1.0L, -leaf.uv_in_frac - 1) +
+                                std::ldexp(1.0L, -leaf.uv_in_frac - w.quotient_guard_bits) + std::ldexp(1.0L, -23);
   std::mt19937_64 rng(22);
   int64_t checked = 0;
   for (int n = 0; n < 30; ++n) {
