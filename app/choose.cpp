@@ -89,8 +89,9 @@ CLI::App* add_choose_command(CLI::App& app, ChooseOptions& options) {
       ->check(CLI::IsMember({"max", "p99", "mean"}))
       ->capture_default_str();
   cmd->add_option("--max-slowdown", options.max_slowdown,
-                  "a smaller table that bands and refills is taken while its cycles stay within "
-                  "this factor of an unbanded table's")
+                  "a setup engine of fewer shared multipliers (1, 2, 4, 8), then a smaller table that "
+                  "bands and refills, is taken while the cycles stay within this factor of the fully "
+                  "parallel setup engine's with an unbanded table (a --set setup_multipliers stays)")
       ->check(cli::number_in(1.0, 1000.0))
       ->capture_default_str();
   cmd->add_option("--json", options.json_path, "also write the ranking as JSON to this file");
@@ -130,6 +131,10 @@ int run_choose_command(const ChooseOptions& options) {
   for (const PreparedScene& s : scenes) scene_list.push_back(&s);
 
   const ErrorTarget target{options.max_error, options.metric, options.statistic};
+  // A setup engine the user names (--set setup_multipliers=M, 0 included) is kept.
+  const bool user_sets_setup = std::any_of(options.settings.begin(), options.settings.end(), [](const std::string& s) {
+    return s.rfind("setup_multipliers=", 0) == 0;
+  });
   fmt::print("choose: the cheapest design with {} {} error <= {} on every scene\n", options.statistic,
              options.metric, options.max_error);
   for (const PreparedScene& s : scenes)
@@ -151,8 +156,11 @@ int run_choose_command(const ChooseOptions& options) {
     Candidate& c = candidates[k];
     c.design = d;
     Sizing sizing = size_design(d, scene_list, user, target);
+    // One budget for both: the cycles of the fully parallel setup engine (or
+    // the user's) and the unbanded table, times --max-slowdown.
     c.unbanded_cycles = total(sizing.results, &DesignResult::cycles);
-    shrink_table(d, scene_list, target, options.max_slowdown, sizing);
+    if (!user_sets_setup) shrink_setup(d, scene_list, target, options.max_slowdown, c.unbanded_cycles, sizing);
+    shrink_table(d, scene_list, target, options.max_slowdown, c.unbanded_cycles, sizing);
     c.meets = sizing.reachable && sizing.error <= target.max_error;
     c.widths = sizing.widths;
     c.error = sizing.error;

@@ -148,32 +148,58 @@ Sizing size_design(const Design& design, const std::vector<const PreparedScene*>
   return sizing;
 }
 
+namespace {
+
+// Runs the scenes at `trial`; takes it into `sizing` when every scene meets the
+// target, none raises a flag on more triangles than at the widest widths, and
+// the cycles stay within max_slowdown times reference_cycles.
+bool take_if_within(const Design& design, const std::vector<const PreparedScene*>& scenes,
+                    const ErrorTarget& target, double max_slowdown, int64_t reference_cycles,
+                    const Widths& trial, Sizing& sizing) {
+  std::vector<DesignResult> results;
+  double error = 0;
+  int64_t cycles = 0;
+  bool flagged = false;
+  for (size_t i = 0; i < scenes.size(); ++i) {
+    ++sizing.evaluations;
+    results.push_back(evaluate(*scenes[i], design, trial));
+    error = std::max(error, target_measure(results.back(), target));
+    cycles += results.back().cycles;
+    flagged = flagged || saturates_more(sizing.widest_flags[i], results.back());
+  }
+  if (error > target.max_error || flagged || double(cycles) > max_slowdown * double(reference_cycles))
+    return false;
+  sizing.widths = trial;
+  sizing.results = std::move(results);
+  sizing.error = error;
+  return true;
+}
+
+}  // namespace
+
+std::vector<int> setup_multiplier_choices() { return {1, 2, 4, 8}; }
+
+void shrink_setup(const Design& design, const std::vector<const PreparedScene*>& scenes,
+                  const ErrorTarget& target, double max_slowdown, int64_t reference_cycles, Sizing& sizing) {
+  if (!sizing.reachable || sizing.widths.setup_multipliers != 0) return;
+  for (const int m : setup_multiplier_choices()) {
+    throw_if_interrupted();
+    Widths trial = sizing.widths;
+    trial.setup_multipliers = m;
+    if (take_if_within(design, scenes, target, max_slowdown, reference_cycles, trial, sizing)) return;
+  }
+}
+
 void shrink_table(const Design& design, const std::vector<const PreparedScene*>& scenes,
-                  const ErrorTarget& target, double max_slowdown, Sizing& sizing) {
+                  const ErrorTarget& target, double max_slowdown, int64_t reference_cycles, Sizing& sizing) {
   if (!sizing.reachable || design.kind != Design::Kind::ConstantDepth) return;
-  int64_t sized_cycles = 0;
-  for (const DesignResult& r : sizing.results) sized_cycles += r.cycles;
   const int minimum = info("table_depth").min_value;
   for (int depth = sizing.widths.table_depth / 2; depth >= minimum; depth /= 2) {
     throw_if_interrupted();
     Widths trial = sizing.widths;
     trial.table_depth = depth;
-    std::vector<DesignResult> results;
-    double error = 0;
-    int64_t cycles = 0;
-    bool flagged = false;
-    for (size_t i = 0; i < scenes.size(); ++i) {
-      ++sizing.evaluations;
-      results.push_back(evaluate(*scenes[i], design, trial));
-      error = std::max(error, target_measure(results.back(), target));
-      cycles += results.back().cycles;
-      flagged = flagged || saturates_more(sizing.widest_flags[i], results.back());
-    }
-    if (error > target.max_error || flagged || double(cycles) > max_slowdown * double(sized_cycles))
-      break;  // a smaller table only bands more
-    sizing.widths = trial;
-    sizing.results = std::move(results);
-    sizing.error = error;
+    // A smaller table only bands more.
+    if (!take_if_within(design, scenes, target, max_slowdown, reference_cycles, trial, sizing)) break;
   }
 }
 

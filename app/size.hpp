@@ -55,13 +55,27 @@ Sizing size_design(const Design& design, const std::vector<const PreparedScene*>
                    const Widths& user, const ErrorTarget& target,
                    const std::function<void(const std::string&, int)>& on_width = {});
 
+// The setup engine's multipliers tried, from the cheapest: M shared
+// multipliers of setup_mul_bits (docs/area.md: each is smaller than M = 0,
+// one multiplier per product, which is the sizing's start).
+std::vector<int> setup_multiplier_choices();
+
+// With the fully parallel setup engine (setup_multipliers 0, as sized), takes
+// the first of setup_multiplier_choices() at which every scene still meets the
+// target, raises no saturation flag on more triangles than at the widest
+// widths, and the scenes' cycles stay within max_slowdown times
+// reference_cycles (a shared engine sets a triangle up in more cycles). A
+// setup_multipliers the sizing starts from other than 0 (the user's) stays.
+void shrink_setup(const Design& design, const std::vector<const PreparedScene*>& scenes,
+                  const ErrorTarget& target, double max_slowdown, int64_t reference_cycles, Sizing& sizing);
+
 // Halves a reachable table design's table depth while every scene still meets
 // the target and raises no saturation flag on more triangles than at the
-// widest widths, and the scenes' cycles stay within max_slowdown times those
-// at the sized depth (a smaller table bands and refills more). Updates the
+// widest widths, and the scenes' cycles stay within max_slowdown times
+// reference_cycles (a smaller table bands and refills more). Updates the
 // sizing's widths, results, error and evaluations.
 void shrink_table(const Design& design, const std::vector<const PreparedScene*>& scenes,
-                  const ErrorTarget& target, double max_slowdown, Sizing& sizing);
+                  const ErrorTarget& target, double max_slowdown, int64_t reference_cycles, Sizing& sizing);
 
 CLI::App* add_size_command(CLI::App& app, SizeOptions& options);
 int run_size_command(const SizeOptions& options);

@@ -69,6 +69,14 @@ expect(all(m["a_bits"] > 0 and m["b_bits"] > 0 and 0 < m["product_bits"] <= m["a
 expect(bool(cd_mul["setup engine"]) and bool(dv_mul["setup engine"]), "both setup engines multiply")
 expect(bool(dv_mul["pixel multiply"]) and bool(cd_mul["correction adder"]),
        "divide's pixel multiply and cd-linear's correction adder multiply")
+# A quotient's multiply (cdsim::quotient) takes the numerator narrowed to the
+# output format plus one integer bit and quotient_guard_bits, and R (recip_bits
+# + 1 bits, unsigned: recip_bits + 2 signed), whatever the plane's width.
+w = dv["widths"]
+operand = w["out_int"] + w["out_frac"] + 1 + w["quotient_guard_bits"]
+pm = dv_mul["pixel multiply"]
+expect(pm and pm["a_bits"] == operand and pm["b_bits"] == w["recip_bits"] + 2,
+       f"divide's pixel multiply is {operand} x {w['recip_bits'] + 2} bits ({pm})")
 if long:
     expect(cp["sram_bits"] > cd["sram_bits"], f"cd-persp's table words hold eps ({cp['sram_bits']} bits against {cd['sram_bits']})")
     expect(cp_blocks["correction adder"] > cd_blocks["correction adder"], "cd-persp's correction adder has the weight's multiplies and ROM")

@@ -59,7 +59,7 @@ TEST(Size, ShrinkTableStopsAtTheLastDepthWithinBudget) {
   const Sizing sized = size_design(design, {&scene}, defaults, target);
   ASSERT_TRUE(sized.reachable);
   Sizing shrunk = sized;
-  shrink_table(design, {&scene}, target, max_slowdown, shrunk);
+  shrink_table(design, {&scene}, target, max_slowdown, sized.results.at(0).cycles, shrunk);
 
   const int depth = shrunk.widths.table_depth;
   bool halved = false;  // depth = the sized depth halved (rounding down) k >= 0 times
@@ -87,6 +87,51 @@ TEST(Size, ShrinkTableStopsAtTheLastDepthWithinBudget) {
     half.table_depth = depth / 2;
     EXPECT_FALSE(within(evaluate(scene, design, half))) << "a table of " << depth / 2 << " lines was within budget too";
   }
+}
+
+// choose's setup search: the multipliers it takes keep the scene within the
+// budget and change nothing but the cycles (the arithmetic is the same), and
+// every cheaper choice, run here on its own, is over the budget; a user's
+// setup_multipliers stays.
+TEST(Size, ShrinkSetupTakesTheFewestMultipliersWithinBudget) {
+  const Widths defaults;
+  const PreparedScene scene = prepare(load_scene(CDSIM_TEST_DATA "/small_scene.tri"), defaults);
+  const Design& design = find_design("cd-linear");
+  const ErrorTarget target{0.5, "footprint", "max"};
+  const Sizing sized = size_design(design, {&scene}, defaults, target);
+  ASSERT_TRUE(sized.reachable);
+  ASSERT_EQ(sized.widths.setup_multipliers, 0);
+  const DesignResult at_sized = evaluate(scene, design, sized.widths);
+  const std::vector<int> choices = setup_multiplier_choices();
+  // On this scene M = 1, 2, 4, 8 cost about 0.5, 0.3, 0.16 and 0.13% more cycles than M = 0.
+  for (const double max_slowdown : {1.0, 1.0015, 1.003, 1.02, 100.0}) {
+    Sizing shrunk = sized;
+    shrink_setup(design, {&scene}, target, max_slowdown, at_sized.cycles, shrunk);
+    const int m = shrunk.widths.setup_multipliers;
+    Widths others = shrunk.widths;
+    others.setup_multipliers = 0;
+    EXPECT_EQ(describe(others), describe(sized.widths)) << "only setup_multipliers changes";
+    const DesignResult at_shrunk = evaluate(scene, design, shrunk.widths);
+    EXPECT_EQ(at_shrunk.error.footprint_max, at_sized.error.footprint_max);
+    EXPECT_EQ(at_shrunk.pixels, at_sized.pixels);
+    EXPECT_LE(double(at_shrunk.cycles), max_slowdown * double(at_sized.cycles)) << "M = " << m;
+    EXPECT_EQ(at_shrunk.cycles, shrunk.results.at(0).cycles);
+    // Every choice before the one taken (all of them when none was) is over the budget.
+    for (const int cheaper : choices) {
+      if (cheaper == m) break;
+      Widths trial = sized.widths;
+      trial.setup_multipliers = cheaper;
+      EXPECT_GT(double(evaluate(scene, design, trial).cycles), max_slowdown * double(at_sized.cycles))
+          << "M = " << cheaper << " was within " << max_slowdown << " too";
+    }
+    if (max_slowdown >= 100.0) {
+      EXPECT_EQ(m, choices.front()) << "any shared engine is within a budget of 100";
+    }
+  }
+  Sizing user = sized;
+  user.widths.setup_multipliers = 4;
+  shrink_setup(design, {&scene}, target, 100.0, at_sized.cycles, user);
+  EXPECT_EQ(user.widths.setup_multipliers, 4) << "the user's setup_multipliers stays";
 }
 
 }  // namespace
