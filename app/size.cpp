@@ -8,8 +8,10 @@
 #include <iostream>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 #include "cli_checks.hpp"
+#include "derived_widths.hpp"
 #include "interrupt.hpp"
 #include "regress.hpp"
 #include "report.hpp"
@@ -271,6 +273,24 @@ int run_size_command(const SizeOptions& options) {
   fmt::print("\n{}: {} {} error {:.4g} {} target {}\n", confirmed <= options.max_error ? "confirmed" : "NOT MET",
              options.statistic, options.metric, confirmed, confirmed <= options.max_error ? "<=" : ">",
              options.max_error);
+  // The setup engine does not change the arithmetic, only the cycles: priced
+  // here at the widths found (choose picks one within its --max-slowdown).
+  fmt::print("\nsetup engine at these widths (setup_mul_bits {}): cycles and px/clk on the scene\n",
+             w.setup_mul_bits);
+  fmt::print("{:>20} {:>8} {:>12} {:>7} {:>9}\n", "setup_multipliers", "setup", "cycles", "px/clk", "slowdown");
+  std::vector<int> setups = setup_multiplier_choices();
+  setups.insert(setups.begin(), 0);
+  int64_t parallel_cycles = 0;
+  for (const int m : setups) {
+    Widths trial = w;
+    trial.setup_multipliers = m;
+    const DesignResult r = evaluate(scene, design, trial);
+    if (m == 0) parallel_cycles = r.cycles;
+    fmt::print("{:>20} {:>8} {:>12} {:>7.3f} {:>9.4f}{}\n", m == 0 ? "0 (one per product)" : std::to_string(m),
+               derive(trial).setup_cycles, r.cycles, r.cycles ? double(r.pixels) / double(r.cycles) : 0.0,
+               double(r.cycles) / double(parallel_cycles), m == w.setup_multipliers ? "  <- these widths" : "");
+  }
+  std::fflush(stdout);
   const int status = confirmed <= options.max_error ? 0 : 1;
   if (!options.verify) return status;
   fmt::print("\nverify: the RTL at these widths against the model\n");
