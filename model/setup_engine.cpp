@@ -80,16 +80,15 @@ Setup setup_engine(const UnitTriangle& t, const Design& design, const Widths& w,
   return setup_engine(t, design, w, derive(w), viewport_width, viewport_height);
 }
 
-Setup setup_engine(const UnitTriangle& t, const Design& design, const Widths& w, const DerivedWidths& dw,
-                   int viewport_width, int viewport_height) {
-  Setup s;
-  s.density = design.density;
-  s.correction = design.correction;
-  s.persp = design.persp;
-  s.edges = make_edges(t, w.subpixel_bits);
-  s.box = bounding_box(t, w.subpixel_bits, viewport_width, viewport_height);
-  if (s.edges.det == 0 || s.box.empty()) return s;
-  s.empty = false;
+// Stage A: the edges, the box, 1/w aligned to the largest exponent, U = u q
+// and V = v q, and the reference pixel centre relative to vertex 0.
+SetupStageA setup_stage_a(const UnitTriangle& t, const Widths& w, const DerivedWidths& dw, int viewport_width,
+                          int viewport_height) {
+  SetupStageA a;
+  a.edges = make_edges(t, w.subpixel_bits);
+  a.box = bounding_box(t, w.subpixel_bits, viewport_width, viewport_height);
+  if (a.edges.det == 0 || a.box.empty()) return a;
+  a.empty = false;
   // Every intermediate is checked against the width the RTL gives it.
   for (const UnitVertex& vertex : t.vertex) {
     fits_or_throw(vertex.x, dw.coord_bits, "vertex x");
@@ -97,91 +96,134 @@ Setup setup_engine(const UnitTriangle& t, const Design& design, const Widths& w,
     fits_or_throw(vertex.u, dw.uv_bits, "vertex u");
     fits_or_throw(vertex.v, dw.uv_bits, "vertex v");
   }
-  fits_or_throw(s.edges.det, dw.det_bits, "det");
+  fits_or_throw(a.edges.det, dw.det_bits, "det");
+  for (size_t i = 0; i < 3; ++i) fits_or_throw(a.edges.c[i], dw.edge_c_bits, "edge c");
+
+  // Per-triangle normalisation of 1/w: align the three mantissas to the largest
+  // exponent. The shared exponent itself cancels in u = U/q and is dropped.
+  a.q = normalised_q(t, w);
+  for (size_t i = 0; i < 3; ++i) {
+    if (a.q[i] == 0) a.flags |= flag::kDepthRange;
+    a.uq[i] = a.q[i] * t.vertex[i].u;
+    a.vq[i] = a.q[i] * t.vertex[i].v;
+    fits_unsigned_or_throw(a.q[i], dw.q_vertex_bits, "vertex q");
+    fits_or_throw(a.uq[i], dw.attr_uv_bits, "vertex U");
+    fits_or_throw(a.vq[i], dw.attr_uv_bits, "vertex V");
+  }
+  const auto& v = t.vertex;
+  const int sp = w.subpixel_bits;
+  const int64_t half = int64_t{1} << (sp - 1);
+  a.ref_x = Wide{a.box.x_lo} * (Wide{1} << sp) + half - v[0].x;
+  a.ref_y = Wide{a.box.y_lo} * (Wide{1} << sp) + half - v[0].y;
+  fits_or_throw(a.ref_x, dw.diff_bits, "reference x offset");
+  fits_or_throw(a.ref_y, dw.diff_bits, "reference y offset");
+  return a;
+}
+
+// Stage B: the plane coefficients of q, U and V, scaled by det and signed so
+// that q |det| > 0, and the largest q |det|, which sets the shared shift.
+SetupStageB setup_stage_b(const UnitTriangle& t, const SetupStageA& a, const DerivedWidths& dw) {
+  SetupStageB b;
+  const auto& v = t.vertex;
+  const Wide dx1 = v[1].x - v[0].x, dy1 = v[1].y - v[0].y;
+  const Wide dx2 = v[2].x - v[0].x, dy2 = v[2].y - v[0].y;
+  const Wide det = a.edges.det;
+  const Wide sign = det < 0 ? -1 : 1;
+  const auto coefficients = [&](const std::array<Wide, 3>& attr, int coef_bits) {
+    const Wide da1 = attr[1] - attr[0], da2 = attr[2] - attr[0];
+    PlaneCoefficients c{sign * (da1 * dy2 - da2 * dy1), sign * (da2 * dx1 - da1 * dx2)};
+    fits_or_throw(c.x, coef_bits, "plane coefficient x");
+    fits_or_throw(c.y, coef_bits, "plane coefficient y");
+    return c;
+  };
+  b.q = coefficients(a.q, dw.coef_q_bits);
+  b.u = coefficients(a.uq, dw.coef_uv_bits);
+  b.v = coefficients(a.vq, dw.coef_uv_bits);
+  for (size_t i = 0; i < 3; ++i) b.q_peak = std::max(b.q_peak, a.q[i] * (det < 0 ? -det : det));
+  fits_unsigned_or_throw(b.q_peak, dw.peak_bits, "q |det|");
+  return b;
+}
+
+// Stage C: the planes at the reference centre (exact), the orientation and
+// the shared shift.
+SetupStageC setup_stage_c(const SetupStageA& a, const SetupStageB& b, const Widths& w, const DerivedWidths& dw) {
+  SetupStageC c;
+  const Wide det = a.edges.det;
+  const Wide sign = det < 0 ? -1 : 1;
+  const auto at_ref = [&](Wide attr0, const PlaneCoefficients& p, int ref_bits) {
+    const Wide value = sign * attr0 * det + p.x * a.ref_x + p.y * a.ref_y;
+    fits_or_throw(value, ref_bits, "plane value at the reference");
+    return value;
+  };
+  c.q_at_ref = at_ref(a.q[0], b.q, dw.exact_ref_q_bits);
+  c.u_at_ref = at_ref(a.uq[0], b.u, dw.exact_ref_uv_bits);
+  c.v_at_ref = at_ref(a.vq[0], b.v, dw.exact_ref_uv_bits);
+  // Orientation: the constant-depth lines run along the axis in which q changes least.
+  const Wide abs_qx = b.q.x < 0 ? -b.q.x : b.q.x;
+  const Wide abs_qy = b.q.y < 0 ? -b.q.y : b.q.y;
+  c.x_major = abs_qx <= abs_qy;
+  // Shared shift: q * |det| peaks at a vertex, and after the shift it fits plane_bits.
+  c.shift = fx::bit_length(b.q_peak) - w.plane_bits;
+  fits_or_throw(c.shift, dw.shift_bits, "per-triangle shift");
+  return c;
+}
+
+// The serial dividers, started in stage C and read in stage D: the slope g
+// and, per edge, the span end at the first column and its step per column.
+SetupDividers setup_dividers(const SetupStageA& a, const SetupStageB& b, const SetupStageC& c, const Widths& w,
+                             const DerivedWidths& dw) {
+  SetupDividers d;
+  const Wide major = c.x_major ? b.q.x : b.q.y;
+  const Wide minor = c.x_major ? b.q.y : b.q.x;
+  d.g = minor == 0 ? 0 : static_cast<int64_t>(divide_nearest(-major * (Wide{1} << w.g_frac), minor));
+  fits_or_throw(d.g, dw.g_bits, "g");
+  d.edge_trackers = edge_trackers(a.edges, c.x_major, c.x_major ? a.box.x_lo : a.box.y_lo, dw);
+  return d;
+}
+
+// Stage D: the normalised planes, the numerators of S, the walk's axes and
+// the range of lines the covered pixels use.
+Setup setup_stage_d(const UnitTriangle& t, const SetupStageA& a, const SetupStageB& b, const SetupStageC& c,
+                    const SetupDividers& dividers, const Design& design, const Widths& w, const DerivedWidths& dw) {
+  Setup s;
+  s.density = design.density;
+  s.correction = design.correction;
+  s.persp = design.persp;
+  s.edges = a.edges;
+  s.box = a.box;
+  s.empty = false;
+  s.flags = a.flags;
   s.fill_q_bits = dw.fill_q_bits;
   s.fill_uv_bits = dw.fill_uv_bits;
   s.pixel_q_bits = dw.pixel_q_bits;
   s.pixel_uv_bits = dw.pixel_uv_bits;
-  for (size_t i = 0; i < 3; ++i) fits_or_throw(s.edges.c[i], dw.edge_c_bits, "edge c");
+  s.x_major = c.x_major;
+  s.g = dividers.g;
+  s.shift = c.shift;
+  s.edge_trackers = dividers.edge_trackers;
 
-  // Per-triangle normalisation of 1/w: align the three mantissas to the largest
-  // exponent. The shared exponent itself cancels in u = U/q and is dropped.
-  const std::array<Wide, 3> q = normalised_q(t, w);
-  std::array<Wide, 3> uq{}, vq{};
-  for (size_t i = 0; i < 3; ++i) {
-    if (q[i] == 0) s.flags |= flag::kDepthRange;
-    uq[i] = q[i] * t.vertex[i].u;
-    vq[i] = q[i] * t.vertex[i].v;
-    fits_unsigned_or_throw(q[i], dw.q_vertex_bits, "vertex q");
-    fits_or_throw(uq[i], dw.attr_uv_bits, "vertex U");
-    fits_or_throw(vq[i], dw.attr_uv_bits, "vertex V");
-  }
-
-  // Plane equations scaled by det (which cancels in every ratio we need), with
-  // the sign chosen so that q * |det| > 0.
-  const auto& v = t.vertex;
-  const Wide dx1 = v[1].x - v[0].x, dy1 = v[1].y - v[0].y;
-  const Wide dx2 = v[2].x - v[0].x, dy2 = v[2].y - v[0].y;
-  const Wide det = s.edges.det;
-  const Wide sign = det < 0 ? -1 : 1;
   const int sp = w.subpixel_bits;
-  const int64_t half = int64_t{1} << (sp - 1);
-  const Wide ref_x = Wide{s.box.x_lo} * (Wide{1} << sp) + half - v[0].x;
-  const Wide ref_y = Wide{s.box.y_lo} * (Wide{1} << sp) + half - v[0].y;
-  struct Exact {
-    Wide at_ref, per_x, per_y;
-  };
-  fits_or_throw(ref_x, dw.diff_bits, "reference x offset");
-  fits_or_throw(ref_y, dw.diff_bits, "reference y offset");
-  const auto plane = [&](const std::array<Wide, 3>& a, int coef_bits, int ref_bits) {
-    const Wide da1 = a[1] - a[0], da2 = a[2] - a[0];
-    const Wide coef_x = sign * (da1 * dy2 - da2 * dy1);
-    const Wide coef_y = sign * (da2 * dx1 - da1 * dx2);
-    fits_or_throw(coef_x, coef_bits, "plane coefficient x");
-    fits_or_throw(coef_y, coef_bits, "plane coefficient y");
-    const Wide at_ref = sign * a[0] * det + coef_x * ref_x + coef_y * ref_y;
-    fits_or_throw(at_ref, ref_bits, "plane value at the reference");
-    return Exact{at_ref, coef_x * (Wide{1} << sp), coef_y * (Wide{1} << sp)};
-  };
-  const Exact eq = plane(q, dw.coef_q_bits, dw.exact_ref_q_bits);
-  const Exact eu = plane(uq, dw.coef_uv_bits, dw.exact_ref_uv_bits);
-  const Exact ev = plane(vq, dw.coef_uv_bits, dw.exact_ref_uv_bits);
-
-  // Orientation: the constant-depth lines run along the axis in which q changes least.
-  const Wide abs_qx = eq.per_x < 0 ? -eq.per_x : eq.per_x;
-  const Wide abs_qy = eq.per_y < 0 ? -eq.per_y : eq.per_y;
-  s.x_major = abs_qx <= abs_qy;
-  const auto major = [&](const Exact& e) { return s.x_major ? e.per_x : e.per_y; };
-  const auto minor = [&](const Exact& e) { return s.x_major ? e.per_y : e.per_x; };
   const int gf = w.g_frac;
-  s.g = minor(eq) == 0 ? 0
-                       : static_cast<int64_t>(divide_nearest(-major(eq) * (Wide{1} << gf), minor(eq)));
-
-  // Shared shift: q * |det| peaks at a vertex, and after the shift it fits plane_bits.
-  Wide q_peak = 0;
-  for (size_t i = 0; i < 3; ++i) q_peak = std::max(q_peak, q[i] * (det < 0 ? -det : det));
-  fits_unsigned_or_throw(q_peak, dw.peak_bits, "q |det|");
-  fits_or_throw(s.g, dw.g_bits, "g");
-  s.shift = fx::bit_length(q_peak) - w.plane_bits;
-  fits_or_throw(s.shift, dw.shift_bits, "per-triangle shift");
+  const auto major = [&](const PlaneCoefficients& p) { return (s.x_major ? p.x : p.y) * (Wide{1} << sp); };
+  const auto minor = [&](const PlaneCoefficients& p) { return (s.x_major ? p.y : p.x) * (Wide{1} << sp); };
   const int line_shift = log2_exact(s.density);
-  const auto normalise = [&](const Exact& e, int ref_bits, int step_bits) {
-    Plane p;
-    p.at_ref = fx::shift_round(e.at_ref, s.shift, fx::Round::Nearest);
-    p.per_major = fx::shift_round(major(e), s.shift, fx::Round::Nearest);
-    p.per_minor = fx::shift_round(minor(e), s.shift, fx::Round::Nearest);
-    p.per_line = fx::shift_round(minor(e), s.shift + line_shift, fx::Round::Nearest);
-    fits_or_throw(p.at_ref, ref_bits, "normalised plane value at the reference");
-    fits_or_throw(p.per_major, step_bits, "normalised plane step (major)");
-    fits_or_throw(p.per_minor, step_bits, "normalised plane step (minor)");
-    return p;
+  const auto normalise = [&](Wide at_ref, const PlaneCoefficients& p, int ref_bits, int step_bits) {
+    Plane n;
+    n.at_ref = fx::shift_round(at_ref, s.shift, fx::Round::Nearest);
+    n.per_major = fx::shift_round(major(p), s.shift, fx::Round::Nearest);
+    n.per_minor = fx::shift_round(minor(p), s.shift, fx::Round::Nearest);
+    n.per_line = fx::shift_round(minor(p), s.shift + line_shift, fx::Round::Nearest);
+    fits_or_throw(n.at_ref, ref_bits, "normalised plane value at the reference");
+    fits_or_throw(n.per_major, step_bits, "normalised plane step (major)");
+    fits_or_throw(n.per_minor, step_bits, "normalised plane step (minor)");
+    return n;
   };
-  s.q = normalise(eq, dw.plane_ref_q_bits, dw.plane_step_q_bits);
-  s.u = normalise(eu, dw.plane_ref_uv_bits, dw.plane_step_uv_bits);
-  s.v = normalise(ev, dw.plane_ref_uv_bits, dw.plane_step_uv_bits);
-  s.step_u = fx::shift_round(major(eu) * (Wide{1} << gf) + Wide{s.g} * minor(eu), s.shift + gf,
+  s.q = normalise(c.q_at_ref, b.q, dw.plane_ref_q_bits, dw.plane_step_q_bits);
+  s.u = normalise(c.u_at_ref, b.u, dw.plane_ref_uv_bits, dw.plane_step_uv_bits);
+  s.v = normalise(c.v_at_ref, b.v, dw.plane_ref_uv_bits, dw.plane_step_uv_bits);
+  s.step_u = fx::shift_round(major(b.u) * (Wide{1} << gf) + Wide{s.g} * minor(b.u), s.shift + gf,
                              fx::Round::Nearest);
-  s.step_v = fx::shift_round(major(ev) * (Wide{1} << gf) + Wide{s.g} * minor(ev), s.shift + gf,
+  s.step_v = fx::shift_round(major(b.v) * (Wide{1} << gf) + Wide{s.g} * minor(b.v), s.shift + gf,
                              fx::Round::Nearest);
   fits_or_throw(s.step_u, dw.step_uv_bits, "numerator of S.u");
   fits_or_throw(s.step_v, dw.step_uv_bits, "numerator of S.v");
@@ -196,8 +238,9 @@ Setup setup_engine(const UnitTriangle& t, const Design& design, const Widths& w,
   // kappa = (minor - minor_ref) - g (major - major_ref) is affine, so over the
   // triangle it lies between its values at the vertices; a pixel's line index is
   // within 1/2 of density * kappa. Values are scaled by 2^(subpixel_bits + g_frac).
-  const Wide ref_major = s.x_major ? ref_x : ref_y;
-  const Wide ref_minor = s.x_major ? ref_y : ref_x;
+  const auto& v = t.vertex;
+  const Wide ref_major = s.x_major ? a.ref_x : a.ref_y;
+  const Wide ref_minor = s.x_major ? a.ref_y : a.ref_x;
   Wide kappa_lo = 0, kappa_hi = 0;
   for (size_t i = 0; i < 3; ++i) {
     const Wide vertex_major = (s.x_major ? v[i].x - v[0].x : v[i].y - v[0].y) - ref_major;
@@ -222,10 +265,27 @@ Setup setup_engine(const UnitTriangle& t, const Design& design, const Widths& w,
     fits_or_throw(line_lo, dw.line_bits, "first pixel line");
     fits_or_throw(line_hi, dw.line_bits, "last pixel line");
   }
-  s.edge_trackers = edge_trackers(s.edges, s.x_major, s.major_lo, dw);
   s.pixel_line_lo = static_cast<int64_t>(line_lo);
   s.pixel_line_hi = static_cast<int64_t>(line_hi);
   return s;
+}
+
+Setup setup_engine(const UnitTriangle& t, const Design& design, const Widths& w, const DerivedWidths& dw,
+                   int viewport_width, int viewport_height) {
+  const SetupStageA a = setup_stage_a(t, w, dw, viewport_width, viewport_height);
+  if (a.empty) {
+    Setup s;
+    s.density = design.density;
+    s.correction = design.correction;
+    s.persp = design.persp;
+    s.edges = a.edges;
+    s.box = a.box;
+    return s;
+  }
+  const SetupStageB b = setup_stage_b(t, a, dw);
+  const SetupStageC c = setup_stage_c(a, b, w, dw);
+  const SetupDividers dividers = setup_dividers(a, b, c, w, dw);
+  return setup_stage_d(t, a, b, c, dividers, design, w, dw);
 }
 
 Reciprocal reciprocal(Wide q, int recip_bits) {

@@ -60,6 +60,45 @@ struct Setup {
   int pixel_q_bits = 127, pixel_uv_bits = 127;  // the per-pixel plane accumulators' widths
 };
 
+// The setup engine's stages, as rtl/setup_stage_a.sv .. setup_stage_d.sv and
+// rtl/setup_dividers.sv split it (docs/rtl.md, "Setup engine"). Each takes
+// what the stages before it registered; setup_engine() runs them in order.
+struct SetupStageA {
+  bool empty = true;  // zero area or no pixel centre in the box: the later stages do not run
+  EdgeSet edges;
+  PixelBox box;
+  std::array<fx::Wide, 3> q{}, uq{}, vq{};  // normalised 1/w, U = u q, V = v q at the vertices
+  fx::Wide ref_x = 0, ref_y = 0;             // the reference pixel centre relative to vertex 0
+  uint32_t flags = 0;                        // kDepthRange when a 1/w underflows
+};
+// A plane's coefficients per subpixel, scaled by det and signed so that q |det| > 0.
+struct PlaneCoefficients {
+  fx::Wide x = 0, y = 0;
+};
+struct SetupStageB {
+  PlaneCoefficients q, u, v;
+  fx::Wide q_peak = 0;  // the largest q |det|
+};
+struct SetupStageC {
+  fx::Wide q_at_ref = 0, u_at_ref = 0, v_at_ref = 0;  // exact, before the shift
+  bool x_major = true;
+  int shift = 0;
+};
+struct SetupDividers {
+  int64_t g = 0;
+  std::array<EdgeTracker, 3> edge_trackers{};
+};
+SetupStageA setup_stage_a(const UnitTriangle& triangle, const Widths& widths, const DerivedWidths& derived,
+                          int viewport_width, int viewport_height);
+SetupStageB setup_stage_b(const UnitTriangle& triangle, const SetupStageA& a, const DerivedWidths& derived);
+SetupStageC setup_stage_c(const SetupStageA& a, const SetupStageB& b, const Widths& widths,
+                          const DerivedWidths& derived);
+SetupDividers setup_dividers(const SetupStageA& a, const SetupStageB& b, const SetupStageC& c,
+                             const Widths& widths, const DerivedWidths& derived);
+Setup setup_stage_d(const UnitTriangle& triangle, const SetupStageA& a, const SetupStageB& b,
+                    const SetupStageC& c, const SetupDividers& dividers, const Design& design,
+                    const Widths& widths, const DerivedWidths& derived);
+
 // The per-triangle normalisation of the vertices' 1/w: the three binary32
 // mantissas aligned to the largest exponent, rounded to q_bits (the shared
 // exponent cancels in u = U/q and is dropped). 0 when a 1/w underflows.
