@@ -4,7 +4,8 @@
 set(CDSIM_RTL_TOP cd_scan_unit)
 set(CDSIM_RTL_ADAPTIVE_TOP adaptive_unit)
 set(CDSIM_RTL_FILES
-  cd_scan_unit.sv setup_engine.sv setup_multipliers.sv reciprocal.sv reciprocal_operand.sv plane_accumulator.sv
+  cd_scan_unit.sv setup_engine.sv setup_stage_a.sv setup_stage_b.sv setup_stage_c.sv setup_dividers.sv
+  setup_stage_d.sv setup_fill.sv setup_multipliers.sv reciprocal.sv reciprocal_operand.sv plane_accumulator.sv
   affine_setup.sv affine_sub_datapath.sv quad_sub_datapath.sv exact_points.sv kim_datapath.sv
   pixel_divide.sv serial_divider.sv shift_round.sv scanline_table.sv column_walker.sv
   context_register.sv correction_adder.sv)
