@@ -91,6 +91,9 @@ inline constexpr uint32_t kDepthRange = 1u << 2;       // a 1/w left its format 
 inline constexpr uint32_t kBanded = 1u << 3;           // more lines than the table holds: walked in bands
 inline constexpr uint32_t kNeighbourDropped = 1u << 4; // correction skipped: the neighbour line was flagged
 inline constexpr int kCount = 5;
+// The flags that mark a pixel's value as possibly wrong (kBanded only says
+// how the triangle was walked).
+inline constexpr uint32_t kDatapath = kTableSaturated | kOutputSaturated | kDepthRange | kNeighbourDropped;
 const char* name(int bit);
 }  // namespace flag
 

@@ -29,6 +29,32 @@ PixelError pixel_error(const Fragment& f, const ExactSample& exact, int out_frac
   return e;
 }
 
+void ErrorAccumulator::add(const PixelError& e) {
+  errors_.push_back(static_cast<float>(e.texels));
+  sum_ += e.texels;
+  sum_squares_ += e.texels * e.texels;
+  max_ = std::max(max_, e.texels);
+  footprint_max_ = std::max(footprint_max_, e.footprint);
+  mismatches_ += e.texel_mismatch;
+  over_lsb_ += e.texels > lsb_;
+}
+
+ErrorStats ErrorAccumulator::stats() {
+  ErrorStats s;
+  s.max = max_;
+  s.footprint_max = footprint_max_;
+  if (errors_.empty()) return s;
+  const double n = double(errors_.size());
+  s.mean = sum_ / n;
+  s.rms = std::sqrt(sum_squares_ / n);
+  const size_t rank = std::min(errors_.size() - 1, static_cast<size_t>(std::ceil(0.99 * n)) - 1);
+  std::nth_element(errors_.begin(), errors_.begin() + static_cast<std::ptrdiff_t>(rank), errors_.end());
+  s.p99 = errors_[rank];
+  s.texel_mismatch = double(mismatches_) / n;
+  s.over_lsb = double(over_lsb_) / n;
+  return s;
+}
+
 DesignResult evaluate(const PreparedScene& prepared, const Design& design, const Widths& widths,
                       bool measure_error, const FragmentVisitor* visit) {
   const Scene& scene = prepared.scene;
@@ -41,10 +67,7 @@ DesignResult evaluate(const PreparedScene& prepared, const Design& design, const
     result.table_word_bits = widths.table_word_bits(design.persp);
     result.table_bits = int64_t{result.table_depth} * widths.table_banks * result.table_word_bits;
   }
-  std::vector<float> errors;
-  double sum = 0, sum_squares = 0;
-  int64_t mismatches = 0, over_lsb = 0;
-  const double lsb = std::ldexp(1.0, -widths.out_frac);
+  ErrorAccumulator all(widths.out_frac), unflagged(widths.out_frac);
   // Kept across calls: a fresh buffer per pass costs page faults that would
   // dominate the model's own time.
   static thread_local std::vector<Fragment> fragments;
@@ -62,35 +85,23 @@ DesignResult evaluate(const PreparedScene& prepared, const Design& design, const
     result.banded_triangles += r.bands > 1;
     (r.x_major ? result.x_major_triangles : result.y_major_triangles) += 1;
     for (int bit = 0; bit < flag::kCount; ++bit) result.flagged_triangles[size_t(bit)] += (r.flags >> bit) & 1;
+    for (const Fragment& f : fragments) result.flagged_pixels += (f.flags & flag::kDatapath) != 0;
     if (!measure_error || fragments.empty()) continue;
     const ExactReference exact(scene.triangles[i], prepared.unit[i], widths.subpixel_bits);
     for (const Fragment& f : fragments) {
       const ExactSample at = exact.at_pixel(f.x, f.y);
       if (visit) (*visit)(static_cast<int64_t>(i), f, at);
       const PixelError e = pixel_error(f, at, widths.out_frac);
-      errors.push_back(static_cast<float>(e.texels));
-      sum += e.texels;
-      sum_squares += e.texels * e.texels;
       if (e.texels > result.worst.error) {
         result.worst = {static_cast<int64_t>(i), f, double(at.u), double(at.v), e.texels};
       }
-      result.error.max = std::max(result.error.max, e.texels);
-      result.error.footprint_max = std::max(result.error.footprint_max, e.footprint);
-      mismatches += e.texel_mismatch;
-      over_lsb += e.texels > lsb;
+      all.add(e);
+      if ((f.flags & flag::kDatapath) == 0) unflagged.add(e);
     }
   }
   result.table_high_water = unit.table().high_water();
-  if (!errors.empty()) {
-    const double n = double(errors.size());
-    result.error.mean = sum / n;
-    result.error.rms = std::sqrt(sum_squares / n);
-    const size_t rank = std::min(errors.size() - 1, static_cast<size_t>(std::ceil(0.99 * n)) - 1);
-    std::nth_element(errors.begin(), errors.begin() + static_cast<std::ptrdiff_t>(rank), errors.end());
-    result.error.p99 = errors[rank];
-    result.error.texel_mismatch = double(mismatches) / n;
-    result.error.over_lsb = double(over_lsb) / n;
-  }
+  result.error = all.stats();
+  result.error_unflagged = unflagged.stats();
   return result;
 }
 

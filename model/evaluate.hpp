@@ -2,6 +2,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -45,7 +46,13 @@ struct DesignResult {
   int64_t lines = 0, banded_triangles = 0, x_major_triangles = 0, y_major_triangles = 0;
   int table_depth = 0, table_word_bits = 0;
   int64_t table_bits = 0, table_high_water = 0;
-  ErrorStats error;
+  ErrorStats error;             // over every pixel
+  // Pixels that carry a datapath flag (flag::kDatapath: a table entry or an
+  // output left its format, a 1/w left its range, a correction was dropped),
+  // and the error over the others, so that a few wild pixels cannot hide in
+  // the statistics of all of them (docs/scenes.md, "Flags").
+  int64_t flagged_pixels = 0;
+  ErrorStats error_unflagged;
   std::array<int64_t, flag::kCount> flagged_triangles{};  // triangles raising each flag
   WorstPixel worst;
   double pixels_per_clock() const { return cycles ? double(pixels) / double(cycles) : 0.0; }
@@ -53,6 +60,23 @@ struct DesignResult {
 
 // Per-pixel error of one fragment against the exact reference.
 struct ExactSample;
+struct PixelError;
+
+// Gathers per-pixel errors into ErrorStats.
+class ErrorAccumulator {
+ public:
+  explicit ErrorAccumulator(int out_frac) : lsb_(std::ldexp(1.0, -out_frac)) {}
+  void add(const PixelError& e);
+  ErrorStats stats();  // sorts a copy's worth in place: call once, at the end
+
+ private:
+  double lsb_;
+  std::vector<float> errors_;
+  double sum_ = 0, sum_squares_ = 0;
+  int64_t mismatches_ = 0, over_lsb_ = 0;
+  double max_ = 0, footprint_max_ = 0;
+};
+
 struct PixelError {
   double texels = 0, footprint = 0;
   bool texel_mismatch = false;

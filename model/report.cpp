@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "build_info.hpp"
@@ -35,18 +36,33 @@ std::string flag_summary(const DesignResult& r) {
 
 std::string results_table(const std::vector<DesignResult>& results, const Widths& widths) {
   std::string out = fmt::format(
-      "{:<17} {:>9} {:>10} {:>6} {:>6} {:>10} {:>9} {:>9} {:>9} {:>9} {:>8}  {}\n", "design",
+      "{:<17} {:>9} {:>10} {:>6} {:>6} {:>10} {:>9} {:>9} {:>9} {:>9} {:>8} {:>10}  {}\n", "design",
       "pixels", "cycles", "px/clk", "depth", "table_bits", "mean_err", "p99_err", "max_err",
-      "fp_max", "texel%", "flags (triangles)");
+      "fp_max", "texel%", "flagged_px", "flags (triangles)");
   for (const DesignResult& r : results) {
-    out += fmt::format("{:<17} {:>9} {:>10} {:>6.3f} {:>6} {:>10} {:>9.2e} {:>9.2e} {:>9.2e} {:>9.2e} {:>8.4f}  {}\n",
+    out += fmt::format("{:<17} {:>9} {:>10} {:>6.3f} {:>6} {:>10} {:>9.2e} {:>9.2e} {:>9.2e} {:>9.2e} {:>8.4f} {:>10}  {}\n",
                        r.design.name, r.pixels, r.cycles, r.pixels_per_clock(), r.table_depth,
                        r.table_bits, r.error.mean, r.error.p99, r.error.max,
-                       r.error.footprint_max, 100.0 * r.error.texel_mismatch, flag_summary(r));
+                       r.error.footprint_max, 100.0 * r.error.texel_mismatch, r.flagged_pixels, flag_summary(r));
   }
   out += fmt::format("errors in texels against the exact reference (max(|du|,|dv|) per pixel); "
-                     "texel% = pixels whose nearest texel differs; output LSB = 2^-{}\n",
+                     "texel% = pixels whose nearest texel differs; output LSB = 2^-{}; flagged_px = pixels "
+                     "with a datapath flag (table_saturated, output_saturated, depth_range, neighbour_dropped)\n",
                      widths.out_frac);
+  // The same statistics without the flagged pixels, so that a few wild
+  // pixels cannot hide in the statistics of all of them.
+  const bool any_flagged =
+      std::any_of(results.begin(), results.end(), [](const DesignResult& r) { return r.flagged_pixels > 0; });
+  if (any_flagged) {
+    out += fmt::format("\nerrors over the pixels without a datapath flag:\n"
+                       "{:<17} {:>9} {:>9} {:>9} {:>9} {:>9} {:>8}\n",
+                       "design", "pixels", "mean_err", "p99_err", "max_err", "fp_max", "texel%");
+    for (const DesignResult& r : results)
+      out += fmt::format("{:<17} {:>9} {:>9.2e} {:>9.2e} {:>9.2e} {:>9.2e} {:>8.4f}\n", r.design.name,
+                         r.pixels - r.flagged_pixels, r.error_unflagged.mean, r.error_unflagged.p99,
+                         r.error_unflagged.max, r.error_unflagged.footprint_max,
+                         100.0 * r.error_unflagged.texel_mismatch);
+  }
   std::string model_only;
   for (const DesignResult& r : results)
     if (!has_rtl(r.design)) model_only += (model_only.empty() ? "" : ", ") + r.design.name;
@@ -120,13 +136,18 @@ nlohmann::json results_json(const Scene& scene, const Widths& widths,
     d["banded_triangles"] = r.banded_triangles;
     d["x_major_triangles"] = r.x_major_triangles;
     d["y_major_triangles"] = r.y_major_triangles;
-    d["error"] = {{"mean", r.error.mean},
-                  {"rms", r.error.rms},
-                  {"p99", r.error.p99},
-                  {"max", r.error.max},
-                  {"footprint_max", r.error.footprint_max},
-                  {"texel_mismatch", r.error.texel_mismatch},
-                  {"over_lsb", r.error.over_lsb}};
+    const auto stats = [](const ErrorStats& e) {
+      return nlohmann::json{{"mean", e.mean},
+                            {"rms", e.rms},
+                            {"p99", e.p99},
+                            {"max", e.max},
+                            {"footprint_max", e.footprint_max},
+                            {"texel_mismatch", e.texel_mismatch},
+                            {"over_lsb", e.over_lsb}};
+    };
+    d["error"] = stats(r.error);  // every pixel
+    d["flagged_pixels"] = r.flagged_pixels;
+    d["error_unflagged"] = stats(r.error_unflagged);
     for (int bit = 0; bit < flag::kCount; ++bit)
       d["flags"][flag::name(bit)] = r.flagged_triangles[size_t(bit)];
     j["designs"].push_back(d);
