@@ -43,7 +43,7 @@ namespace fs = std::filesystem;
 namespace {
 
 // Bumped whenever the flow below changes, so that cached results are redone.
-constexpr const char* kFlowVersion = "area-flow-5";
+constexpr const char* kFlowVersion = "area-flow-6";
 
 // Yosys writes "=== cd_scan_unit ===" but "Chip area for module '\cd_scan_unit'".
 std::string strip_escape(const std::string& name) {
@@ -289,7 +289,14 @@ std::string UnitConfig::unit_front(const fs::path& include) const {
       "read_verilog -sv -DSYNTHESIS {inc}{src}\n"
       "read_verilog -sv -lib {inc} {rtl}/scanline_table.sv\n"
       "chparam {p} {top}\n"
-      "hierarchy -check -top {top}\n",
+      "hierarchy -check -top {top}\n"
+      // The setup engine's stage modules are synthesised as part of it, as
+      // one block (flattened into setup_engine, so that constants and unused
+      // outputs cross their ports); every other module keeps its own.
+      "setattr -mod -set keep_hierarchy 1 *\n"
+      "setattr -mod -unset keep_hierarchy *setup_stage_* *setup_dividers* *setup_fill*\n"
+      "flatten\n"
+      "setattr -mod -unset keep_hierarchy *\n",
       fmt::arg("inc", fmt::format("-I{} -I{}", include.string(), rtl_dir)), fmt::arg("src", unit_sources),
       fmt::arg("rtl", rtl_dir), fmt::arg("p", parameters), fmt::arg("top", top));
 }

@@ -59,6 +59,17 @@ std::array<EdgeTracker, 3> edge_trackers(const EdgeSet& e, bool x_major, int64_t
   return trackers;
 }
 
+// What a setup holds before stage D: the design's options, the edges and the box.
+Setup setup_of(const SetupStageA& a, const Design& design) {
+  Setup s;
+  s.density = design.density;
+  s.correction = design.correction;
+  s.persp = design.persp;
+  s.edges = a.edges;
+  s.box = a.box;
+  return s;
+}
+
 }  // namespace
 
 std::array<Wide, 3> normalised_q(const UnitTriangle& t, const Widths& w) {
@@ -185,12 +196,7 @@ SetupDividers setup_dividers(const SetupStageA& a, const SetupStageB& b, const S
 // the range of lines the covered pixels use.
 Setup setup_stage_d(const UnitTriangle& t, const SetupStageA& a, const SetupStageB& b, const SetupStageC& c,
                     const SetupDividers& dividers, const Design& design, const Widths& w, const DerivedWidths& dw) {
-  Setup s;
-  s.density = design.density;
-  s.correction = design.correction;
-  s.persp = design.persp;
-  s.edges = a.edges;
-  s.box = a.box;
+  Setup s = setup_of(a, design);
   s.empty = false;
   s.flags = a.flags;
   s.fill_q_bits = dw.fill_q_bits;
@@ -273,15 +279,7 @@ Setup setup_stage_d(const UnitTriangle& t, const SetupStageA& a, const SetupStag
 Setup setup_engine(const UnitTriangle& t, const Design& design, const Widths& w, const DerivedWidths& dw,
                    int viewport_width, int viewport_height) {
   const SetupStageA a = setup_stage_a(t, w, dw, viewport_width, viewport_height);
-  if (a.empty) {
-    Setup s;
-    s.density = design.density;
-    s.correction = design.correction;
-    s.persp = design.persp;
-    s.edges = a.edges;
-    s.box = a.box;
-    return s;
-  }
+  if (a.empty) return setup_of(a, design);
   const SetupStageB b = setup_stage_b(t, a, dw);
   const SetupStageC c = setup_stage_c(a, b, w, dw);
   const SetupDividers dividers = setup_dividers(a, b, c, w, dw);
