@@ -21,6 +21,7 @@
 #include "size.hpp"
 #include "sweep.hpp"
 #include "evaluate.hpp"
+#include "flagged_triangles.hpp"
 #include "exact.hpp"
 #include "hard_cases.hpp"
 #include "regress.hpp"
@@ -57,26 +58,34 @@ class FragmentDump {
 };
 
 int run_command(const CommonOptions& options, const std::string& json_path, bool show_worst,
-                bool with_area, const std::string& dump_path) {
+                bool with_area, const std::string& dump_path, const std::string& flagged_path) {
   const Widths widths = widths_from(options);
   const std::vector<Design> designs = designs_from(options.designs);
   if (!json_path.empty()) check_output_folder("--json", json_path);
   if (!dump_path.empty()) check_output_folder("--dump", dump_path);
-  check_distinct_files({{"--json", json_path}, {"--dump", dump_path}},
+  if (!flagged_path.empty()) check_output_folder("--flagged", flagged_path);
+  check_distinct_files({{"--json", json_path}, {"--dump", dump_path}, {"--flagged", flagged_path}},
                        {{"--scene", scene_input_file(options.scene)}});
   const PreparedScene scene = prepare(load_scene(options.scene, options.scene_options), widths);
   std::cout << provenance(scene.scene, widths) << std::endl;  // before the long part
   std::vector<DesignResult> results;
   FragmentDump dump(widths.out_frac);
-  const FragmentVisitor to_dump = [&](int64_t t, const Fragment& f, const ExactSample& x) { dump.add(t, f, x); };
+  FlaggedTriangles flagged(scene, widths);
   for (const Design& d : designs) {
     if (isatty(fileno(stderr))) fmt::print(stderr, "running {} ...\r", d.name);
-    const bool dumped = !dump_path.empty() && results.empty();
-    results.push_back(evaluate(scene, d, widths, true, dumped ? &to_dump : nullptr));
+    const bool dumped = !dump_path.empty() && results.empty(), tallied = !flagged_path.empty();
+    const FragmentVisitor visit = [&](int64_t t, const Fragment& f, const ExactSample& x) {
+      if (dumped) dump.add(t, f, x);
+      if (tallied) flagged.add(t, f, x);
+    };
+    if (tallied) flagged.start(d);
+    results.push_back(evaluate(scene, d, widths, true, dumped || tallied ? &visit : nullptr));
+    if (tallied) flagged.finish();
   }
   std::cout << results_table(results, widths);
   std::cout << cycle_breakdown_table(results);
   if (show_worst) std::cout << worst_pixels(results, scene.scene, widths);
+  if (!flagged_path.empty()) std::cout << flagged.table(10);
   nlohmann::json json = results_json(scene.scene, widths, results);
   if (with_area) {
     const AreaOptions area_options;
@@ -101,6 +110,10 @@ int run_command(const CommonOptions& options, const std::string& json_path, bool
     write_file_atomic(dump_path, dump.text());
     std::cout << fmt::format("wrote {} ({} fragments of {})\n", dump_path, results.front().pixels,
                              results.front().design.name);
+  }
+  if (!flagged_path.empty()) {
+    write_file_atomic(flagged_path, flagged.csv());
+    std::cout << fmt::format("wrote {} ({} flagged triangles)\n", flagged_path, flagged.size());
   }
   return 0;
 }
@@ -202,7 +215,7 @@ int dispatch(Cli& cli) {
       fmt::print("{:<17} {}{}\n", d.name, d.summary, has_rtl(d) ? "" : " [model only: no RTL yet]");
     return 0;
   }
-  return run_command(cli.run, cli.json_path, cli.show_worst, cli.run_area, cli.dump_path);
+  return run_command(cli.run, cli.json_path, cli.show_worst, cli.run_area, cli.dump_path, cli.flagged_path);
 }
 
 // What was printed must have reached stdout: a full disk or a closed file is

@@ -16,6 +16,10 @@ std::unique_ptr<Cli> make_cli() {
   cli->run_command->add_option("--dump", cli->dump_path,
                                "write every fragment of the first design as CSV: triangle, x, y, u, v, "
                                "the exact u and v, flags (docs/scenes.md)");
+  cli->run_command->add_option("--flagged", cli->flagged_path,
+                               "write every triangle with a datapath-flagged pixel, per design, as CSV with its "
+                               "geometry (depth ratio, distance to its horizon, the T and S bits its lines need); "
+                               "the worst ten per design also on stdout (docs/robustness.md)");
   cli->run_command->add_flag("--area", cli->run_area,
                              "also synthesise each design at these widths (cdsim area, cached; "
                              "all cores) and report its area");

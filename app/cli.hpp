@@ -26,6 +26,7 @@ struct Cli {
   std::string json_path;       // run --json
   bool show_worst = false;     // run --worst
   std::string dump_path;       // run --dump
+  std::string flagged_path;    // run --flagged
   bool run_area = false;       // run --area
   double bench_seconds = 1.0;  // bench --seconds
   std::string sv_path;         // widths --sv
