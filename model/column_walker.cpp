@@ -20,7 +20,7 @@ void line_of(ColumnState& c, int64_t exact, const Widths& w) {
 
 void ColumnWalker::restart() {
   offset_ = 0;
-  exact_ = 0;
+  exact_ = line_phase_g(setup_, widths_);
   for (size_t i = 0; i < 3; ++i) {
     bound_[i] = setup_.edge_trackers[i].bound;
     remainder_[i] = setup_.edge_trackers[i].remainder;
@@ -64,7 +64,7 @@ ColumnState walk_column(const Setup& s, int64_t offset, const Widths& w) {
   ColumnState c;
   c.offset = offset;
   c.major = s.major_lo + offset;
-  line_of(c, s.density * s.g * offset, w);
+  line_of(c, s.density * s.g * offset + line_phase_g(s, w), w);
   const Span covered = covered_span(s.edges, s.x_major, c.major);
   c.span.lo = std::max(covered.lo, s.minor_lo);
   c.span.hi = std::min(covered.hi, s.minor_hi);

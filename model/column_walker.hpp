@@ -20,6 +20,11 @@ struct ColumnState {
   Span span;                 // covered pixels along the column, clipped to the box
 };
 
+// The line phase phi in g_frac fraction bits: where m g o starts.
+inline int64_t line_phase_g(const Setup& s, const Widths& w) {
+  return s.line_phase * (int64_t{1} << (w.g_frac - s.line_phase_bits));
+}
+
 // The walker as the hardware runs it: column by column from the first, m g o
 // and each edge's span end accumulated (Setup::edge_trackers), no division.
 class ColumnWalker {
@@ -35,7 +40,7 @@ class ColumnWalker {
   const Setup& setup_;
   const Widths& widths_;
   int64_t offset_ = 0;
-  int64_t exact_ = 0;  // m g o in g_frac fraction bits
+  int64_t exact_ = 0;  // m g o + phi in g_frac fraction bits
   std::array<int64_t, 3> bound_{}, remainder_{};
 };
 

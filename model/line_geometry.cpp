@@ -43,13 +43,13 @@ LineGeometry line_geometry(const ScreenTriangle& screen, const UnitTriangle& uni
   LD t_max = 0, s_max = 0;
   for (int64_t k = s.pixel_line_lo - guard; k <= s.pixel_line_hi + guard; ++k) {
     ++g.lines;
-    const LD q_k = static_cast<LD>(s.q.at_ref + fx::Wide{k} * s.q.per_line);
+    const LD q_k = static_cast<LD>(plane_on_line(s, s.q, k));
     if (q_k <= 0) {
       ++g.past_horizon;
       continue;
     }
-    const LD t_u = static_cast<LD>(s.u.at_ref + fx::Wide{k} * s.u.per_line) * uv_scale / q_k;
-    const LD t_v = static_cast<LD>(s.v.at_ref + fx::Wide{k} * s.v.per_line) * uv_scale / q_k;
+    const LD t_u = static_cast<LD>(plane_on_line(s, s.u, k)) * uv_scale / q_k;
+    const LD t_v = static_cast<LD>(plane_on_line(s, s.v, k)) * uv_scale / q_k;
     const LD s_u = static_cast<LD>(s.step_u) * uv_scale / q_k;
     const LD s_v = static_cast<LD>(s.step_v) * uv_scale / q_k;
     t_max = std::max({t_max, std::fabs(t_u), std::fabs(t_v)});

@@ -150,7 +150,11 @@ SetupStageB setup_stage_b(const UnitTriangle& t, const SetupStageA& a, const Der
   b.q = coefficients(a.q, dw.coef_q_bits);
   b.u = coefficients(a.uq, dw.coef_uv_bits);
   b.v = coefficients(a.vq, dw.coef_uv_bits);
-  for (size_t i = 0; i < 3; ++i) b.q_peak = std::max(b.q_peak, a.q[i] * (det < 0 ? -det : det));
+  for (size_t i = 0; i < 3; ++i) {
+    const Wide q_det = a.q[i] * (det < 0 ? -det : det);
+    b.q_peak = std::max(b.q_peak, q_det);
+    b.q_floor = i == 0 ? q_det : std::min(b.q_floor, q_det);
+  }
   fits_unsigned_or_throw(b.q_peak, dw.peak_bits, "q |det|");
   return b;
 }
@@ -257,13 +261,30 @@ Setup setup_stage_d(const UnitTriangle& t, const SetupStageA& a, const SetupStag
     kappa_hi = i == 0 ? kappa : std::max(kappa_hi, kappa);
   }
   const Wide scale = Wide{1} << (sp + gf);
-  Wide line_lo = fx::ceil_div(2 * kappa_lo - scale, 2 * scale);
-  Wide line_hi = fx::ceil_div(2 * kappa_hi + scale, 2 * scale) - 1;
-  // The box bounds them too: line = density * minor_offset - round(density g o).
+  // The line phase: when the far vertex lies within 2^line_phase_gaps_log2 line
+  // gaps of the horizon (q_floor m < 2^line_phase_gaps_log2 |q per minor pixel|), move the
+  // lines by phi in [0, 1) gaps so that one lies at the far vertex or up to
+  // 2^-line_phase_bits gaps beyond it: every covered pixel and its correction
+  // neighbour then lie on the near side, none past the horizon.
+  const int pb = w.line_phase_bits;
+  s.line_phase_bits = pb;
+  const Wide q_minor = minor(b.q);
+  if (pb > 0 && design.kind == Design::Kind::ConstantDepth && q_minor != 0 &&
+      b.q_floor * s.density < (q_minor < 0 ? -q_minor : q_minor) * (Wide{1} << dw.line_phase_gaps_log2)) {
+    const Wide unit = Wide{1} << (sp + gf - pb);  // 2^-pb gaps in kappa's units
+    // q grows with kappa when it grows along the minor axis: the far vertex has the least kappa.
+    const Wide far = q_minor > 0 ? fx::floor_div(kappa_lo, unit) : fx::ceil_div(kappa_hi, unit);
+    s.line_phase = static_cast<int64_t>(far & ((Wide{1} << pb) - 1));
+  }
+  const Wide phase = Wide{s.line_phase} * (Wide{1} << (sp + gf - pb));  // in kappa's units
+  Wide line_lo = fx::ceil_div(2 * (kappa_lo - phase) - scale, 2 * scale);
+  Wide line_hi = fx::ceil_div(2 * (kappa_hi - phase) + scale, 2 * scale) - 1;
+  // The box bounds them too: line = density * minor_offset - round(density g o + phi).
+  const Wide phase_g = Wide{s.line_phase} * (Wide{1} << (gf - pb));  // in g_frac bits
   const auto column_round = [&](int64_t offset) {
-    return fx::floor_div(Wide{s.density} * s.g * offset + (Wide{1} << (gf - 1)), Wide{1} << gf);
+    return fx::floor_div(Wide{s.density} * s.g * offset + phase_g + (Wide{1} << (gf - 1)), Wide{1} << gf);
   };
-  const Wide round_first = 0, round_last = column_round(s.major_count - 1);
+  const Wide round_first = column_round(0), round_last = column_round(s.major_count - 1);
   line_lo = std::max(line_lo, -std::max(round_first, round_last));
   line_hi = std::min(line_hi, Wide{s.density} * (s.minor_hi - s.minor_lo) -
                                   std::min(round_first, round_last));
@@ -309,10 +330,16 @@ Wide quotient(Wide numerator, int numerator_frac, const Reciprocal& r, int recip
                     fx::Overflow::Saturate, saturated);
 }
 
+Wide plane_on_line(const Setup& s, const Plane& plane, int64_t line) {
+  const int pb = s.line_phase_bits;
+  return plane.at_ref +
+         fx::shift_round((Wide{line} * (Wide{1} << pb) + s.line_phase) * plane.per_line, pb, fx::Round::Nearest);
+}
+
 TableEntry fill_line(const Setup& s, int64_t line, const Widths& w) {
-  const Wide q = s.q.at_ref + Wide{line} * s.q.per_line;
-  const Wide u = s.u.at_ref + Wide{line} * s.u.per_line;
-  const Wide v = s.v.at_ref + Wide{line} * s.v.per_line;
+  const Wide q = plane_on_line(s, s.q, line);
+  const Wide u = plane_on_line(s, s.u, line);
+  const Wide v = plane_on_line(s, s.v, line);
   fits_or_throw(q, s.fill_q_bits, "q on a table line");
   fits_or_throw(u, s.fill_uv_bits, "U on a table line");
   fits_or_throw(v, s.fill_uv_bits, "V on a table line");

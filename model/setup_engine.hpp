@@ -53,6 +53,13 @@ struct Setup {
   Plane q, u, v;
   fx::Wide step_u = 0, step_v = 0;  // numerators of S: U_major + g U_minor, normalised
   int64_t pixel_line_lo = 0, pixel_line_hi = -1;  // lines covered pixels can use
+  // The lines' phase phi in line_phase_bits fraction bits of a line gap, in
+  // [0, 1): line k lies at k + phi line gaps from the reference centre along
+  // the minor axis (docs/robustness.md, "The line phase"). 0 but for a
+  // constant-depth triangle whose far vertex lies within 2^line_phase_gaps_log2
+  // (derived_widths) gaps of its horizon.
+  int64_t line_phase = 0;
+  int line_phase_bits = 0;
   EdgeSet edges;
   std::array<EdgeTracker, 3> edge_trackers{};  // per edge, at the first column (major_lo)
   uint32_t flags = 0;
@@ -77,7 +84,8 @@ struct PlaneCoefficients {
 };
 struct SetupStageB {
   PlaneCoefficients q, u, v;
-  fx::Wide q_peak = 0;  // the largest q |det|
+  fx::Wide q_peak = 0;   // the largest q |det|
+  fx::Wide q_floor = 0;  // the smallest: the far vertex's plane value (the line phase's test)
 };
 struct SetupStageC {
   fx::Wide q_at_ref = 0, u_at_ref = 0, v_at_ref = 0;  // exact, before the shift
@@ -149,5 +157,10 @@ struct TableEntry {
 
 // Computes table entry k (line k relative to the reference pixel).
 TableEntry fill_line(const Setup& setup, int64_t line, const Widths& widths);
+
+// A plane's value on line k, k + phi gaps from the reference: at_ref plus
+// (k + phi) per_line, the product rounded to nearest once (rtl/setup_fill.sv:
+// stage E's product with the first line; later lines add per_line exactly).
+fx::Wide plane_on_line(const Setup& setup, const Plane& plane, int64_t line);
 
 }  // namespace cdsim

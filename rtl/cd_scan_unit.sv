@@ -144,6 +144,7 @@ module cd_scan_unit #(
   localparam int PixelBits    = `CD_PIXEL_BITS;
   localparam int LineBits     = `CD_LINE_BITS;
   localparam int GBits        = `CD_G_BITS;
+  localparam int PhaseBits    = `CD_LINE_PHASE_BITS > 0 ? `CD_LINE_PHASE_BITS : 1;
   localparam int WeightBits   = `CD_WEIGHT_BITS;
   localparam bit Persp        = HasPersp && HasCorrection && HasTable;
   localparam int WordBits     = Persp ? `CD_PERSP_WORD_BITS : `CD_WORD_BITS;
@@ -294,6 +295,8 @@ module cd_scan_unit #(
   logic [7:0]         setup_flags;
   logic               s_x_major, setup_x_major;
   logic signed [GBits-1:0] s_g, setup_g;
+  logic [PhaseBits-1:0]    s_line_phase, line_phase;  // the lines' phase (setup_stage_d.sv)
+  logic                    tri_lines;  // the offered triangle's design walks constant-depth lines
   logic signed [LineBits-1:0] pixel_line_hi;
   logic [PixelBits-1:0] s_major_lo, s_minor_lo, s_minor_hi, major_lo, minor_lo, minor_hi;
   logic [PixelBits:0]   s_major_count, major_count;
@@ -329,13 +332,14 @@ module cd_scan_unit #(
                           edge_rem, edge_step, edge_slope_rem, edge_slope}));
 
   if (HasTable) begin : gen_line_context
-    logic [GBits+LineBits-1:0] p_line;
-    context_register #(.Bits(GBits + LineBits), .Present(FifoDepth > 1))
-      u_line_stage (.clk_i, .load_i(to_stage), .d_i({s_g, s_pixel_line_hi}), .q_o(p_line));
-    context_register #(.Bits(GBits + LineBits), .Present(FifoDepth > 0))
-      u_line_context (.clk_i, .load_i(take), .d_i(p_line), .q_o({setup_g, pixel_line_hi}));
+    logic [GBits+PhaseBits+LineBits-1:0] p_line;
+    context_register #(.Bits(GBits + PhaseBits + LineBits), .Present(FifoDepth > 1))
+      u_line_stage (.clk_i, .load_i(to_stage), .d_i({s_g, s_line_phase, s_pixel_line_hi}), .q_o(p_line));
+    context_register #(.Bits(GBits + PhaseBits + LineBits), .Present(FifoDepth > 0))
+      u_line_context (.clk_i, .load_i(take), .d_i(p_line), .q_o({setup_g, line_phase, pixel_line_hi}));
   end else begin : gen_line_shared
     assign setup_g = s_g;
+    assign line_phase = s_line_phase;
     assign pixel_line_hi = s_pixel_line_hi;
   end
 
@@ -375,6 +379,7 @@ module cd_scan_unit #(
     .viewport_height_i (viewport_height_i[13:0]),
     .density_log2_i,
     .correction_i      (correction_i && HasCorrection),
+    .lines_i           (tri_lines),
     .hold_i            (hold),
     .setup_i           (front_q == FrSetup),
     .stage_count_i     (`CD_SETUP_COUNT_BITS'(fcount_q)),
@@ -388,6 +393,7 @@ module cd_scan_unit #(
     .no_lines_o        (setup_no_lines),
     .pixel_line_lo_o   (s_pixel_line_lo),
     .pixel_line_hi_o   (s_pixel_line_hi),
+    .line_phase_o      (s_line_phase),
     .flags_o           (setup_flags),
     .q_at_ref_o        (s_q_at_ref),
     .u_at_ref_o        (s_u_at_ref),
@@ -439,6 +445,7 @@ module cd_scan_unit #(
     .advance_i         (column_advance),
     .offset_i          (offset_q),
     .g_i               (setup_g),
+    .line_phase_i      (line_phase),
     .density_log2_i    (density_log2_q),
     .major_lo_i        (major_lo),
     .minor_lo_i        (minor_lo),
@@ -924,6 +931,7 @@ module cd_scan_unit #(
   endfunction
   logic [3:0] f_modes;
   assign f_modes = modes_of(f_kind_q, f_segment_log2_q);
+  assign tri_lines = HasTable && !(|modes_of(kind_i, segment_log2_i));
   assign f_mode_affine = f_modes[2];
   assign f_per_pixel = |f_modes;
   // A constant-depth triangle with pixel lines: its table is filled band by band.

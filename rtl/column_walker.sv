@@ -32,6 +32,8 @@ module column_walker #(
   input  logic [`CD_PIXEL_BITS-1:0]         offset_i,
   // From the setup engine.
   input  logic signed [`CD_G_BITS-1:0]      g_i,
+  // The lines' phase phi (CD_LINE_PHASE_BITS fraction bits of a gap): m g o starts at it.
+  input  logic [(`CD_LINE_PHASE_BITS > 0 ? `CD_LINE_PHASE_BITS : 1)-1:0] line_phase_i,
   input  logic [1:0]                        density_log2_i,
   input  logic [`CD_PIXEL_BITS-1:0]         major_lo_i,
   input  logic [`CD_PIXEL_BITS-1:0]         minor_lo_i,
@@ -58,6 +60,7 @@ module column_walker #(
 );
 
   localparam int GFrac         = `CD_G_FRAC;
+  localparam int PhaseFrac     = `CD_LINE_PHASE_BITS;
   localparam int DFrac         = `CD_D_FRAC;
   localparam int PixelBits     = `CD_PIXEL_BITS;
   localparam int LineBits      = `CD_LINE_BITS;
@@ -75,7 +78,7 @@ module column_walker #(
       GFrac > DFrac ? TDistBits'(1) << (WeightRight > 0 ? WeightRight - 1 : 0) : '0;
 
   // ---------------------------------------------------------------- state
-  logic signed [ExactBits-1:0] exact_d, exact_q;      // m g o, g_frac fraction bits
+  logic signed [ExactBits-1:0] exact_d, exact_q;      // m g o + phi, g_frac fraction bits
   logic signed [BoundBits-1:0] bound_d [3];
   logic signed [BoundBits-1:0] bound_q [3];
   logic [StepBits-1:0]         rem_d [3];
@@ -89,6 +92,7 @@ module column_walker #(
     rem_sum = '0;
     if (init_i) begin
       exact_d = '0;
+      if (HasLines && PhaseFrac > 0) exact_d = ExactBits'($unsigned(line_phase_i)) <<< (GFrac - PhaseFrac);
       for (int i = 0; i < 3; i++) begin
         bound_d[i] = edge_bound_i[BoundBits*i +: BoundBits];
         rem_d[i] = edge_rem_i[StepBits*i +: StepBits];

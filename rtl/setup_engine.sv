@@ -66,6 +66,8 @@ module setup_engine #(
   input  logic [13:0]                viewport_height_i,
   input  logic [1:0]                 density_log2_i,
   input  logic                       correction_i,
+  // A constant-depth triangle: its lines may take a phase (setup_stage_d.sv).
+  input  logic                       lines_i,
   // A held unit (a fragment refused): the fill pipeline keeps its contents and
   // writes nothing; the stages, on the held stage count, reload what they hold.
   input  logic                       hold_i,
@@ -82,6 +84,8 @@ module setup_engine #(
   output logic                       no_lines_o,
   output logic signed [`CD_LINE_BITS-1:0] pixel_line_lo_o,
   output logic signed [`CD_LINE_BITS-1:0] pixel_line_hi_o,
+  // The lines' phase, CD_LINE_PHASE_BITS fraction bits of a line gap (one bit when there are none).
+  output logic [(`CD_LINE_PHASE_BITS > 0 ? `CD_LINE_PHASE_BITS : 1)-1:0] line_phase_o,
   output logic [7:0]                 flags_o,
   // Normalised planes of q, U, V: at the reference pixel, per pixel along the
   // major axis and along the minor axis (per_minor is per line: the minor
@@ -178,6 +182,7 @@ module setup_engine #(
   logic [13:0]                 viewport_width_q, viewport_height_q;
   logic [1:0]                  density_log2_q;
   logic                        guard_q;
+  logic                        lines_q;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -190,6 +195,7 @@ module setup_engine #(
       viewport_height_q <= '0;
       density_log2_q <= '0;
       guard_q <= 1'b0;
+      lines_q <= 1'b0;
     end else if (load_i) begin
       for (int i = 0; i < 3; i++) begin
         x_q[CoordBits*i +: CoordBits] <= tri_x_i[32*i +: CoordBits];
@@ -202,6 +208,7 @@ module setup_engine #(
       viewport_height_q <= viewport_height_i;
       density_log2_q <= density_log2_i;
       guard_q <= correction_i;
+      lines_q <= lines_i;
     end
   end
 
@@ -296,7 +303,7 @@ module setup_engine #(
   // ---------------------------------------------------------------- stage B
   logic signed [CoefQBits-1:0]  q_coef_x_q, q_coef_y_q;
   logic signed [CoefUvBits-1:0] u_coef_x_q, u_coef_y_q, v_coef_x_q, v_coef_y_q;
-  logic [PeakBits-1:0]          q_peak_q;
+  logic [PeakBits-1:0]          q_peak_q, q_floor_q;
   logic signed [DetBits-1:0]    det_abs_q;
 
   setup_stage_b #(.HasPlanes(HasPlanes)) u_stage_b (
@@ -321,6 +328,7 @@ module setup_engine #(
     .v_coef_x_o (v_coef_x_q),
     .v_coef_y_o (v_coef_y_q),
     .q_peak_o   (q_peak_q),
+    .q_floor_o  (q_floor_q),
     .det_abs_o  (det_abs_q)
   );
 
@@ -425,6 +433,7 @@ module setup_engine #(
     .x_i               (x_q),
     .y_i               (y_q),
     .density_log2_i    (density_log2_q),
+    .lines_i           (lines_q),
     .box_x_lo_i        (box_x_lo_q),
     .box_x_hi_i        (box_x_hi_q),
     .box_y_lo_i        (box_y_lo_q),
@@ -437,6 +446,7 @@ module setup_engine #(
     .u_coef_y_i        (u_coef_y_q),
     .v_coef_x_i        (v_coef_x_q),
     .v_coef_y_i        (v_coef_y_q),
+    .q_floor_i         (q_floor_q),
     .q_ref_i           (q_ref_q),
     .u_ref_i           (u_ref_q),
     .v_ref_i           (v_ref_q),
@@ -466,6 +476,7 @@ module setup_engine #(
     .line_lo_o         (line_lo_q),
     .line_hi_o         (pixel_line_hi_o),
     .no_lines_o        (no_lines_o),
+    .line_phase_o      (line_phase_o),
     .q_at_ref_o        (q_at_ref_o),
     .u_at_ref_o        (u_at_ref_o),
     .v_at_ref_o        (v_at_ref_o),
@@ -521,6 +532,7 @@ module setup_engine #(
       .step_u_i      (step_u_q),
       .step_v_i      (step_v_q),
       .line_lo_i     (line_lo_q),
+      .line_phase_i  (line_phase_o),
       .guard_i       (guard_q),
       .products_i    (products[ResultE*AccBits +: (ResultCount-ResultE)*AccBits]),
       .term_a_o      (term_a_e),

@@ -22,6 +22,8 @@ module setup_fill #(
   localparam int PlaneStepUvBits = `CD_PLANE_STEP_UV_BITS,
   localparam int StepUvBits   = `CD_STEP_UV_BITS,
   localparam int LineBits     = `CD_LINE_BITS,
+  localparam int PhaseFrac    = `CD_LINE_PHASE_BITS,
+  localparam int PhaseBits    = PhaseFrac > 0 ? PhaseFrac : 1,
   localparam int AccBits      = `CD_SETUP_ACC_BITS,
   localparam int OperandABits = `CD_SETUP_OPERAND_A_BITS,
   localparam int OperandBBits = `CD_SETUP_OPERAND_B_BITS,
@@ -45,6 +47,7 @@ module setup_fill #(
   input  logic signed [StepUvBits-1:0]     step_u_i,
   input  logic signed [StepUvBits-1:0]     step_v_i,
   input  logic signed [LineBits-1:0]       line_lo_i,
+  input  logic [PhaseBits-1:0]             line_phase_i,  // CD_LINE_PHASE_BITS fraction bits of a gap
   input  logic                             guard_i,
   input  logic [Results*AccBits-1:0]       products_i,
   output logic [Terms*OperandABits-1:0]    term_a_o,
@@ -91,18 +94,33 @@ module setup_fill #(
   localparam int MaxSLeft = OperandSFrac > UvInFrac ? OperandSFrac - UvInFrac : 0;
   localparam int MaxEpsLeft = OperandEpsFrac;
 
-  // Stage E's operands: the first line of the first band, line_lo - guard.
+  // Stage E's operands: the first line of the first band, line_lo - guard,
+  // plus the phase (cdsim::plane_on_line): (line 2^PhaseFrac + phi) per_line,
+  // rounded to nearest by PhaseFrac bits below.
   logic signed [LineBits-1:0] first_line;
+  logic signed [LineBits+PhaseFrac-1:0] first_position;
   assign first_line = line_lo_i - LineBits'($signed({1'b0, guard_i}));
+  if (PhaseFrac > 0) begin : gen_phase
+    assign first_position = {first_line, line_phase_i};
+  end else begin : gen_no_phase
+    assign first_position = first_line;
+    logic unused_phase;
+    assign unused_phase = ^line_phase_i;
+  end
+  // A stage E product, rounded to nearest by PhaseFrac bits (ties toward +inf).
+  function automatic logic signed [AccBits-1:0] on_line(input logic signed [AccBits-1:0] product);
+    on_line = PhaseFrac > 0 ? (product + AccBits'(1 <<< (PhaseFrac > 0 ? PhaseFrac - 1 : 0))) >>> PhaseFrac
+                            : product;
+  endfunction
   always_comb begin
     term_a_o = '0;
     term_b_o = '0;
     term_a_o[OperandABits*(`CD_SETUP_TERM_Q_LINE - FirstTerm) +: OperandABits] = OperandABits'(q_per_line_i);
-    term_b_o[OperandBBits*(`CD_SETUP_TERM_Q_LINE - FirstTerm) +: OperandBBits] = OperandBBits'(first_line);
+    term_b_o[OperandBBits*(`CD_SETUP_TERM_Q_LINE - FirstTerm) +: OperandBBits] = OperandBBits'(first_position);
     term_a_o[OperandABits*(`CD_SETUP_TERM_U_LINE - FirstTerm) +: OperandABits] = OperandABits'(u_per_line_i);
-    term_b_o[OperandBBits*(`CD_SETUP_TERM_U_LINE - FirstTerm) +: OperandBBits] = OperandBBits'(first_line);
+    term_b_o[OperandBBits*(`CD_SETUP_TERM_U_LINE - FirstTerm) +: OperandBBits] = OperandBBits'(first_position);
     term_a_o[OperandABits*(`CD_SETUP_TERM_V_LINE - FirstTerm) +: OperandABits] = OperandABits'(v_per_line_i);
-    term_b_o[OperandBBits*(`CD_SETUP_TERM_V_LINE - FirstTerm) +: OperandBBits] = OperandBBits'(first_line);
+    term_b_o[OperandBBits*(`CD_SETUP_TERM_V_LINE - FirstTerm) +: OperandBBits] = OperandBBits'(first_position);
   end
 
   // q, U, V on the line being issued: loaded with the first line of the first
@@ -151,9 +169,9 @@ module setup_fill #(
     v_line_d = v_line_q;
     if (load) begin
       // at the reference + first line x per line
-      q_line_d = FillQBits'(q_at_ref_i) + FillQBits'(products_i[AccBits*(`CD_SETUP_Q_LINE - FirstResult) +: AccBits]);
-      u_line_d = FillUvBits'(u_at_ref_i) + FillUvBits'(products_i[AccBits*(`CD_SETUP_U_LINE - FirstResult) +: AccBits]);
-      v_line_d = FillUvBits'(v_at_ref_i) + FillUvBits'(products_i[AccBits*(`CD_SETUP_V_LINE - FirstResult) +: AccBits]);
+      q_line_d = FillQBits'(q_at_ref_i) + FillQBits'(on_line(products_i[AccBits*(`CD_SETUP_Q_LINE - FirstResult) +: AccBits]));
+      u_line_d = FillUvBits'(u_at_ref_i) + FillUvBits'(on_line(products_i[AccBits*(`CD_SETUP_U_LINE - FirstResult) +: AccBits]));
+      v_line_d = FillUvBits'(v_at_ref_i) + FillUvBits'(on_line(products_i[AccBits*(`CD_SETUP_V_LINE - FirstResult) +: AccBits]));
     end else if (fill_valid_i) begin
       if (fill_last_i && fill_guard) begin
         q_line_d = q_line_q - FillQBits'(fill_q_per_line);

@@ -48,6 +48,7 @@ module setup_stage_b #(
   output logic signed [CoefUvBits-1:0]  v_coef_x_o,
   output logic signed [CoefUvBits-1:0]  v_coef_y_o,
   output logic [PeakBits-1:0]           q_peak_o,
+  output logic [PeakBits-1:0]           q_floor_o,   // the smallest q |det|: the far vertex's
   output logic signed [DetBits-1:0]     det_abs_o
 );
 
@@ -66,7 +67,7 @@ module setup_stage_b #(
   logic signed [CoefQBits-1:0]  q_coef_x_d, q_coef_y_d;
   logic signed [CoefUvBits-1:0] u_coef_x_d, u_coef_y_d, v_coef_x_d, v_coef_y_d;
   logic [PeakBits-1:0]          peak_candidate [3];
-  logic [PeakBits-1:0]          q_peak_d;
+  logic [PeakBits-1:0]          q_peak_d, q_floor_d;
 
   // The operands: differences of q, U and V, and |det|.
   always_comb begin
@@ -98,6 +99,7 @@ module setup_stage_b #(
     v_coef_x_d = '0;
     v_coef_y_d = '0;
     q_peak_d = '0;
+    q_floor_d = '0;
     for (int i = 0; i < 3; i++) peak_candidate[i] = '0;
     if (stage_i) begin
       q_coef_x_d = CoefQBits'(products_i[AccBits*(`CD_SETUP_Q_COEF_X - FirstResult) +: AccBits]);  // dq1 dy2 - dq2 dy1
@@ -123,6 +125,7 @@ module setup_stage_b #(
       for (int i = 0; i < 3; i++) begin
         peak_candidate[i] = PeakBits'(products_i[AccBits*(`CD_SETUP_PEAK0 + i - FirstResult) +: AccBits]);  // q |det|
         if (peak_candidate[i] > q_peak_d) q_peak_d = peak_candidate[i];
+        if (i == 0 || peak_candidate[i] < q_floor_d) q_floor_d = peak_candidate[i];
       end
     end
   end
@@ -136,6 +139,7 @@ module setup_stage_b #(
       v_coef_x_o <= v_coef_x_d;
       v_coef_y_o <= v_coef_y_d;
       q_peak_o <= q_peak_d;
+      q_floor_o <= q_floor_d;
       det_abs_o <= det_abs;
     end
   end

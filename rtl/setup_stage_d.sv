@@ -44,6 +44,8 @@ module setup_stage_d #(
   localparam int GDivDenBits  = CoefQBits,
   localparam int FreeBits     = DiffBits - 1,
   localparam int BoundNumBits = EdgeNBits - SubpixelBits,
+  localparam int PeakBits     = `CD_PEAK_BITS,
+  localparam int PhaseBits    = `CD_LINE_PHASE_BITS > 0 ? `CD_LINE_PHASE_BITS : 1,
   localparam int FirstResult  = `CD_SETUP_STEP_U,
   localparam int Results      = `CD_SETUP_Q_LINE - `CD_SETUP_STEP_U,
   localparam int FirstTerm    = `CD_SETUP_TERM_STEP_U,
@@ -56,6 +58,7 @@ module setup_stage_d #(
   input  logic [3*CoordBits-1:0]           x_i,
   input  logic [3*CoordBits-1:0]           y_i,
   input  logic [1:0]                       density_log2_i,
+  input  logic                             lines_i,  // a constant-depth triangle: its lines may take a phase
   // Stage A's registers.
   input  logic [PixelBits-1:0]             box_x_lo_i,
   input  logic [PixelBits-1:0]             box_x_hi_i,
@@ -70,6 +73,7 @@ module setup_stage_d #(
   input  logic signed [CoefUvBits-1:0]     u_coef_y_i,
   input  logic signed [CoefUvBits-1:0]     v_coef_x_i,
   input  logic signed [CoefUvBits-1:0]     v_coef_y_i,
+  input  logic [PeakBits-1:0]              q_floor_i,  // the far vertex's q |det|
   // Stage C's registers.
   input  logic signed [ExactRefQBits-1:0]  q_ref_i,
   input  logic signed [ExactRefUvBits-1:0] u_ref_i,
@@ -102,6 +106,8 @@ module setup_stage_d #(
   output logic signed [LineBits-1:0]       line_lo_o,
   output logic signed [LineBits-1:0]       line_hi_o,
   output logic                             no_lines_o,
+  // The lines' phase, CD_LINE_PHASE_BITS fraction bits of a line gap.
+  output logic [PhaseBits-1:0]             line_phase_o,
   output logic signed [PlaneRefQBits-1:0]  q_at_ref_o,
   output logic signed [PlaneRefUvBits-1:0] u_at_ref_o,
   output logic signed [PlaneRefUvBits-1:0] v_at_ref_o,
@@ -290,6 +296,21 @@ module setup_stage_d #(
   logic signed [GBits+PixelBits+3:0] round_product;
   logic                            no_lines_d;
   localparam logic signed [KappaBits-1:0] KappaScale = KappaBits'(1) <<< (SubpixelBits + GFrac);
+  // The line phase (model/setup_engine.cpp, setup_stage_d): when the far
+  // vertex lies within 2^PhaseGapsLog2 line gaps of its plane's horizon,
+  // q_floor m < 2^PhaseGapsLog2 |q per minor pixel|, the lines move by
+  // phi = the far vertex's kappa modulo one gap, rounded away from the
+  // triangle to PhaseFrac bits.
+  localparam int PhaseFrac      = `CD_LINE_PHASE_BITS;
+  localparam int PhaseGapsLog2  = `CD_LINE_PHASE_GAPS_LOG2;
+  localparam int PhaseUnitLog2  = SubpixelBits + GFrac - PhaseFrac;  // 2^-PhaseFrac gaps in kappa's units
+  localparam int HorizonBits    = (PeakBits > AxisQBits ? PeakBits : AxisQBits) + PhaseGapsLog2 + 4;
+  logic [HorizonBits-1:0]          floor_lines, minor_gaps;
+  logic                            phased;
+  logic signed [KappaBits-1:0]     phase_kappa;
+  logic [PhaseBits-1:0]            phase_d;
+  logic signed [GFrac+1:0]         phase_g;
+  logic signed [LineRangeBits-1:0] round_first;
 
   // The operands: the walk's axes, each vertex's offsets along them, and the
   // box's last column.
@@ -325,6 +346,13 @@ module setup_stage_d #(
     kappa = '0;
     line_lo = '0;
     line_hi = '0;
+    floor_lines = '0;
+    minor_gaps = '0;
+    phased = 1'b0;
+    phase_kappa = '0;
+    phase_d = '0;
+    phase_g = '0;
+    round_first = '0;
     round_product = '0;
     round_last = '0;
     minor_extent = '0;
@@ -337,24 +365,34 @@ module setup_stage_d #(
         if (i == 0 || kappa < kappa_lo) kappa_lo = kappa;
         if (i == 0 || kappa > kappa_hi) kappa_hi = kappa;
       end
-      // ceil((2 kappa - scale) / (2 scale)) and ceil((2 kappa + scale) / (2 scale)) - 1.
-      line_lo = LineRangeBits'(-((KappaScale - (kappa_lo <<< 1)) >>> (SubpixelBits + GFrac + 1)));
-      line_hi = LineRangeBits'(-((-(kappa_hi <<< 1) - KappaScale) >>> (SubpixelBits + GFrac + 1))) - 1;
-      // The box bounds them too: line = m minor_offset - round(m g o).
-      round_product = (GBits+PixelBits+4)'(products_i[AccBits*(`CD_SETUP_ROUND_LAST - FirstResult) +: AccBits])  // g (columns - 1)
-                      <<< density_log2_i;
+      // The phase: q grows with kappa when it grows along the minor axis, so
+      // the far vertex has the least kappa (floor) or else the greatest (ceil).
+      floor_lines = HorizonBits'(q_floor_i) << density_log2_i;
+      minor_gaps = (q_axis_minor < 0 ? -(HorizonBits'(q_axis_minor)) : HorizonBits'(q_axis_minor)) << PhaseGapsLog2;
+      phased = PhaseFrac > 0 && lines_i && q_axis_minor != '0 && floor_lines < minor_gaps;
+      // The far vertex's kappa in 2^-PhaseFrac gaps, modulo one gap.
+      if (phased) phase_d = PhaseBits'(q_axis_minor > 0 ? kappa_lo >>> PhaseUnitLog2 : -((-kappa_hi) >>> PhaseUnitLog2));
+      phase_kappa = KappaBits'($signed({1'b0, phase_d})) <<< PhaseUnitLog2;
+      phase_g = (GFrac+2)'($signed({1'b0, phase_d})) <<< (GFrac - PhaseFrac);
+      // ceil((2 kappa' - scale) / (2 scale)) and ceil((2 kappa' + scale) / (2 scale)) - 1, kappa' = kappa - phi.
+      line_lo = LineRangeBits'(-((KappaScale - ((kappa_lo - phase_kappa) <<< 1)) >>> (SubpixelBits + GFrac + 1)));
+      line_hi = LineRangeBits'(-((-((kappa_hi - phase_kappa) <<< 1) - KappaScale) >>> (SubpixelBits + GFrac + 1))) - 1;
+      // The box bounds them too: line = m minor_offset - round(m g o + phi).
+      round_first = LineRangeBits'(phase_g >= (GFrac+2)'(1 <<< (GFrac - 1)));
+      round_product = ((GBits+PixelBits+4)'(products_i[AccBits*(`CD_SETUP_ROUND_LAST - FirstResult) +: AccBits])  // g (columns - 1)
+                       <<< density_log2_i) + (GBits+PixelBits+4)'(phase_g);
       round_last = LineRangeBits'((GBits+PixelBits+4)'((round_product + (GBits+PixelBits+4)'(1 <<< (GFrac - 1))) >>> GFrac));
       minor_extent = (LineRangeBits'($signed({1'b0, minor_hi_d})) - LineRangeBits'($signed({1'b0, minor_lo_d})))
                      <<< density_log2_i;
-      if (round_last > 0) begin
+      if (round_last > round_first) begin
         if (line_lo < -round_last) line_lo = -round_last;
-      end else if (line_lo < 0) begin
-        line_lo = '0;
+      end else if (line_lo < -round_first) begin
+        line_lo = -round_first;
       end
-      if (round_last < 0) begin
+      if (round_last < round_first) begin
         if (line_hi > minor_extent - round_last) line_hi = minor_extent - round_last;
-      end else if (line_hi > minor_extent) begin
-        line_hi = minor_extent;
+      end else if (line_hi > minor_extent - round_first) begin
+        line_hi = minor_extent - round_first;
       end
       no_lines_d = line_lo > line_hi;
     end
@@ -426,6 +464,7 @@ module setup_stage_d #(
       line_lo_o <= LineBits'(line_lo);
       line_hi_o <= LineBits'(line_hi);
       no_lines_o <= no_lines_d;
+      line_phase_o <= phase_d;
       q_at_ref_o <= q_at_ref_d;
       u_at_ref_o <= u_at_ref_d;
       v_at_ref_o <= v_at_ref_d;

@@ -116,6 +116,40 @@ Scene grazing() {
   return s;
 }
 
+Scene horizon() {
+  // Small triangles whose far vertex lies 0.05 to 3 line gaps from the
+  // horizon (q = 0) of their plane: nearly edge-on, as the flagged triangles
+  // of the OpenArena maps are (docs/robustness.md, "Flagged triangles").
+  // q = a (y - y_h - t (x - x_f)) with the horizon at y_h + t (x - x_f): the
+  // lines of constant depth run at slope t across the pixel grid. Heights from
+  // a fiftieth of a pixel to 1.5 pixels; every fourth one transposed (y-major).
+  Builder b("horizon", 512, 512, "small near-edge-on triangles 0.05 to 3 line gaps from their horizon");
+  const double gaps[] = {0.05, 0.12, 0.25, 0.5, 0.67, 0.9, 1.2, 3.0};
+  const double heights[] = {0.02, 0.3, 1.5};
+  const double tilts[] = {0.03, -0.11};
+  int n = 0;
+  for (const double gap : gaps)
+    for (const double height : heights)
+      for (const double tilt : tilts) {
+        const double x0 = 20 + 60 * (n % 8), y0 = 21.1 + 60 * (n / 8);
+        // The far vertex 0.6 pixels below a row of pixel centres, the others below it.
+        const std::array<std::array<double, 2>, 3> at = {{{x0 + 3.3, y0}, {x0, y0 + height}, {x0 + 7.1, y0 + height}}};
+        double horizon = 1e300;  // y_h: the least of y - t (x - x_f) over the vertices, less the gap
+        for (const auto& p : at) horizon = std::min(horizon, p[1] - tilt * (p[0] - at[0][0]));
+        horizon -= gap;
+        std::array<std::array<double, 5>, 3> v{};
+        const double u[] = {0, 37.5, 81.25}, vv[] = {0, 512, 130};
+        for (size_t i = 0; i < 3; ++i) {
+          const double q = 0.01 * (at[i][1] - horizon - tilt * (at[i][0] - at[0][0]));
+          v[i] = {at[i][0], at[i][1], 1.0 / q, u[i] + 7 * n, vv[i]};
+          if (n % 4 == 3) std::swap(v[i][0], v[i][1]);
+        }
+        b.add(v[0], v[1], v[2]);
+        ++n;
+      }
+  return b.scene;
+}
+
 Scene sliver() {
   Builder b("sliver", 4096, 4096, "slivers under a pixel wide and thousands of pixels long");
   b.add({10, 10, 1, 0, 0}, {4000, 3000, 8, 3000, 300}, {10.3, 10.2, 1, 0, 1});
@@ -226,6 +260,7 @@ const std::vector<Entry>& entries() {
       {{"edge-on", "divide within 1e-2 of the footprint; cd-none within one footprint (half a pixel off its line where the footprint itself changes fast); cd-linear better than cd-none on mean and footprint max"}, edge_on},
       {{"near-plane", "front end clips at w = near: every vertex has w >= near; pixels drawn; divide within 2 output LSBs plus input quantisation"}, near_plane},
       {{"grazing", "divide within 1e-2 of the footprint; the constant-depth designs should be too, or flag the pixel: not yet (issue 41): cd-none 0.63 footprints, cd-linear 0.17 (553 texels), adaptive 1,630, all with no flag"}, grazing},
+      {{"horizon", "no constant-depth design uses a line past the horizon (no depth_range, no neighbour_dropped): the line phase keeps them on the near side, where line_phase_bits=0 drops and flags corrections; divide within 1e-2 footprints; cd-persp at the widest widths within 2^-8 with no flag (at default widths eps_int=2 saturates, flagged); cd-none (4.1 footprints) and cd-linear (2.2) are not bounded a line gap from a horizon (docs/robustness.md)"}, horizon},
       {{"sliver", "coverage exact against a brute-force test; walker cycles include every column of the box"}, sliver},
       {{"subpixel", "zero-area triangles emit nothing and cost setup cycles only; sub-pixel ones cover at most a few pixels, exactly"}, subpixel},
       {{"watertight", "every pixel under the grid covered exactly once, in every design"}, watertight},

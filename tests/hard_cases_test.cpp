@@ -12,6 +12,7 @@
 #include "derived_widths.hpp"
 #include "evaluate.hpp"
 #include "hard_cases.hpp"
+#include "line_geometry.hpp"
 #include "column_walker.hpp"
 #include "test_support.hpp"
 
@@ -147,6 +148,50 @@ TEST_F(HardCase, Grazing) {
         setup_engine(scene_.unit[i], find_design("cd-linear"), w, scene_.scene.width, scene_.scene.height);
     EXPECT_NE(s.g, 0) << "triangle " << i;
   }
+}
+
+// Small near-edge-on triangles whose far vertex lies within a few line gaps
+// of the horizon of their plane: the triangles of the OpenArena maps that
+// flagged (issue 41). The line phase keeps every line a pixel uses on the near
+// side; without it, correction neighbours past the horizon are dropped and flagged.
+TEST_F(HardCase, Horizon) {
+  const uint32_t past = flag::kDepthRange | flag::kNeighbourDropped;
+  {
+    Widths w;
+    w.line_phase_bits = 0;
+    const auto o = run_all("horizon", w);
+    EXPECT_NE(o.at("cd-linear").flags & flag::kNeighbourDropped, 0u) << "the case should need the phase";
+    EXPECT_NE(o.at("cd-persp").flags & flag::kNeighbourDropped, 0u) << "the case should need the phase";
+  }
+  const Widths w;
+  const auto o = run_all("horizon", w);
+  for (const auto& [name, outcome] : o) {
+    EXPECT_GT(outcome.pixels, 100) << name;
+    if (is_constant_depth(name)) {
+      EXPECT_EQ(outcome.flags & past, 0u) << name;
+    }
+  }
+  EXPECT_LT(o.at("divide").max_footprint, 1e-2);
+  // The far vertex of every triangle within 2^line_phase_gaps_log2 gaps of its
+  // horizon, so that every one takes the phase.
+  const int limit = 1 << derive(w).line_phase_gaps_log2;
+  for (size_t i = 0; i < scene_.unit.size(); ++i) {
+    const ::cdsim::Setup s = setup_engine(scene_.unit[i], find_design("cd-linear"), w, scene_.scene.width,
+                                          scene_.scene.height);
+    if (s.empty) continue;  // no pixel centre inside (the thinnest ones)
+    EXPECT_LT(line_geometry(scene_.scene.triangles[i], scene_.unit[i], s, w).horizon_gaps, limit) << "triangle " << i;
+  }
+  // At the widest widths `cdsim choose` tries, cd-persp is as good as divide and flags nothing.
+  Widths widest = w;
+  for (const auto& [field, value] : std::vector<std::pair<int Widths::*, int>>{
+           {&Widths::q_bits, 32}, {&Widths::plane_bits, 48}, {&Widths::recip_bits, 32}, {&Widths::g_frac, 30},
+           {&Widths::t_int, 20}, {&Widths::t_frac, 24}, {&Widths::s_int, 20}, {&Widths::s_frac, 24},
+           {&Widths::d_frac, 24}, {&Widths::eps_int, 16}, {&Widths::eps_frac, 30}, {&Widths::persp_frac, 30},
+           {&Widths::persp_table_log2, 8}})
+    widest.*field = value;
+  const auto wide = run_all("horizon", widest);
+  EXPECT_EQ(wide.at("cd-persp").flags & flag::kDatapath, 0u);
+  EXPECT_LT(wide.at("cd-persp").max_footprint, std::ldexp(1.0, -8));
 }
 
 TEST_F(HardCase, EdgeOn) {
