@@ -261,20 +261,31 @@ Setup setup_stage_d(const UnitTriangle& t, const SetupStageA& a, const SetupStag
     kappa_hi = i == 0 ? kappa : std::max(kappa_hi, kappa);
   }
   const Wide scale = Wide{1} << (sp + gf);
-  // The line phase: when the far vertex lies within 2^line_phase_gaps_log2 line
-  // gaps of the horizon (q_floor m < 2^line_phase_gaps_log2 |q per minor pixel|), move the
-  // lines by phi in [0, 1) gaps so that one lies at the far vertex or up to
-  // 2^-line_phase_bits gaps beyond it: every covered pixel and its correction
-  // neighbour then lie on the near side, none past the horizon.
+  // The line phase. Without it, the farthest line a pixel can use lies d0
+  // gaps beyond the far vertex (the next line at or past its kappa), and the
+  // horizon h = q_floor m / |q per minor pixel| gaps beyond it. When that line
+  // may lie within half a gap of the horizon or past it (h < d0 + 1/2, d0
+  // bounded in quarters of a gap so that the test is a comparator and a
+  // three-bit multiple), move the lines by phi in [0, 1) gaps so that one lies
+  // at the far vertex or up to 2^-line_phase_bits gaps beyond it: every
+  // covered pixel and its correction neighbour then lie on the near side.
   const int pb = w.line_phase_bits;
   s.line_phase_bits = pb;
   const Wide q_minor = minor(b.q);
-  if (pb > 0 && design.kind == Design::Kind::ConstantDepth && q_minor != 0 &&
-      b.q_floor * s.density < (q_minor < 0 ? -q_minor : q_minor) * (Wide{1} << dw.line_phase_gaps_log2)) {
+  // With g = 0 every pixel lies on its own line (t = 0) and reads no
+  // neighbour, so no line past the horizon is ever read: no phase.
+  if (pb > 0 && design.kind == Design::Kind::ConstantDepth && q_minor != 0 && s.g != 0) {
     const Wide unit = Wide{1} << (sp + gf - pb);  // 2^-pb gaps in kappa's units
-    // q grows with kappa when it grows along the minor axis: the far vertex has the least kappa.
-    const Wide far = q_minor > 0 ? fx::floor_div(kappa_lo, unit) : fx::ceil_div(kappa_hi, unit);
-    s.line_phase = static_cast<int64_t>(far & ((Wide{1} << pb) - 1));
+    const Wide mask = (Wide{1} << pb) - 1;
+    // q grows with kappa when it grows along the minor axis: the far vertex
+    // has the least kappa, and the lines at or below it are beyond it.
+    const bool far_low = q_minor > 0;
+    const Wide phi = (far_low ? fx::floor_div(kappa_lo, unit) : fx::ceil_div(kappa_hi, unit)) & mask;
+    // d0 < (beyond + 1) 2^-pb, and < (quarters + 1) / 4.
+    const Wide beyond = far_low ? phi : (phi == 0 ? 0 : (Wide{1} << pb) - phi);
+    const Wide quarters = (4 * beyond + 3) >> pb;  // the least with (beyond + 1) 2^-pb <= (quarters + 1) / 4
+    const Wide abs_minor = q_minor < 0 ? -q_minor : q_minor;
+    if (4 * b.q_floor * s.density < abs_minor * (quarters + 3)) s.line_phase = static_cast<int64_t>(phi);
   }
   const Wide phase = Wide{s.line_phase} * (Wide{1} << (sp + gf - pb));  // in kappa's units
   Wide line_lo = fx::ceil_div(2 * (kappa_lo - phase) - scale, 2 * scale);

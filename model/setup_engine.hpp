@@ -56,8 +56,8 @@ struct Setup {
   // The lines' phase phi in line_phase_bits fraction bits of a line gap, in
   // [0, 1): line k lies at k + phi line gaps from the reference centre along
   // the minor axis (docs/robustness.md, "The line phase"). 0 but for a
-  // constant-depth triangle whose far vertex lies within 2^line_phase_gaps_log2
-  // (derived_widths) gaps of its horizon.
+  // constant-depth triangle whose farthest line would otherwise lie within
+  // half a gap of its horizon, or past it.
   int64_t line_phase = 0;
   int line_phase_bits = 0;
   EdgeSet edges;

@@ -296,16 +296,18 @@ module setup_stage_d #(
   logic signed [GBits+PixelBits+3:0] round_product;
   logic                            no_lines_d;
   localparam logic signed [KappaBits-1:0] KappaScale = KappaBits'(1) <<< (SubpixelBits + GFrac);
-  // The line phase (model/setup_engine.cpp, setup_stage_d): when the far
-  // vertex lies within 2^PhaseGapsLog2 line gaps of its plane's horizon,
-  // q_floor m < 2^PhaseGapsLog2 |q per minor pixel|, the lines move by
-  // phi = the far vertex's kappa modulo one gap, rounded away from the
-  // triangle to PhaseFrac bits.
+  // The line phase (model/setup_engine.cpp, setup_stage_d): phi = the far
+  // vertex's kappa modulo one gap, rounded away from the triangle to
+  // PhaseFrac bits; taken when the farthest line without it, less than
+  // (quarters + 1) / 4 gaps beyond the far vertex, may lie within half a gap
+  // of the horizon, h = q_floor m / |q per minor pixel| gaps beyond it:
+  // 4 q_floor m < |q per minor pixel| (quarters + 3).
   localparam int PhaseFrac      = `CD_LINE_PHASE_BITS;
-  localparam int PhaseGapsLog2  = `CD_LINE_PHASE_GAPS_LOG2;
   localparam int PhaseUnitLog2  = SubpixelBits + GFrac - PhaseFrac;  // 2^-PhaseFrac gaps in kappa's units
-  localparam int HorizonBits    = (PeakBits > AxisQBits ? PeakBits : AxisQBits) + PhaseGapsLog2 + 4;
+  localparam int HorizonBits    = (PeakBits > AxisQBits ? PeakBits : AxisQBits) + 6;
   logic [HorizonBits-1:0]          floor_lines, minor_gaps;
+  logic [PhaseBits-1:0]            phi, beyond;
+  logic [2:0]                      quarters, multiple;  // multiple = quarters + 3
   logic                            phased;
   logic signed [KappaBits-1:0]     phase_kappa;
   logic [PhaseBits-1:0]            phase_d;
@@ -349,6 +351,10 @@ module setup_stage_d #(
     floor_lines = '0;
     minor_gaps = '0;
     phased = 1'b0;
+    phi = '0;
+    beyond = '0;
+    quarters = '0;
+    multiple = '0;
     phase_kappa = '0;
     phase_d = '0;
     phase_g = '0;
@@ -366,12 +372,19 @@ module setup_stage_d #(
         if (i == 0 || kappa > kappa_hi) kappa_hi = kappa;
       end
       // The phase: q grows with kappa when it grows along the minor axis, so
-      // the far vertex has the least kappa (floor) or else the greatest (ceil).
-      floor_lines = HorizonBits'(q_floor_i) << density_log2_i;
-      minor_gaps = (q_axis_minor < 0 ? -(HorizonBits'(q_axis_minor)) : HorizonBits'(q_axis_minor)) << PhaseGapsLog2;
-      phased = PhaseFrac > 0 && lines_i && q_axis_minor != '0 && floor_lines < minor_gaps;
-      // The far vertex's kappa in 2^-PhaseFrac gaps, modulo one gap.
-      if (phased) phase_d = PhaseBits'(q_axis_minor > 0 ? kappa_lo >>> PhaseUnitLog2 : -((-kappa_hi) >>> PhaseUnitLog2));
+      // the far vertex has the least kappa (floor) or else the greatest (ceil):
+      // its kappa in 2^-PhaseFrac gaps, modulo one gap.
+      phi = PhaseBits'(q_axis_minor > 0 ? kappa_lo >>> PhaseUnitLog2 : -((-kappa_hi) >>> PhaseUnitLog2));
+      beyond = q_axis_minor > 0 || phi == '0 ? phi : PhaseBits'(-phi);
+      // The least with (beyond + 1) 2^-PhaseFrac <= (quarters + 1) / 4.
+      quarters = 3'({beyond, 2'b11} >> PhaseFrac);
+      floor_lines = (HorizonBits'(q_floor_i) << 2) << density_log2_i;
+      multiple = quarters + 3'd3;
+      minor_gaps = (q_axis_minor < 0 ? -(HorizonBits'(q_axis_minor)) : HorizonBits'(q_axis_minor)) *
+                   HorizonBits'(multiple);
+      // With g = 0 every pixel lies on its own line and reads no neighbour.
+      phased = PhaseFrac > 0 && lines_i && q_axis_minor != '0 && g_d != '0 && floor_lines < minor_gaps;
+      if (phased) phase_d = phi;
       phase_kappa = KappaBits'($signed({1'b0, phase_d})) <<< PhaseUnitLog2;
       phase_g = (GFrac+2)'($signed({1'b0, phase_d})) <<< (GFrac - PhaseFrac);
       // ceil((2 kappa' - scale) / (2 scale)) and ceil((2 kappa' + scale) / (2 scale)) - 1, kappa' = kappa - phi.

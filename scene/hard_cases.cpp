@@ -117,14 +117,14 @@ Scene grazing() {
 }
 
 Scene horizon() {
-  // Small triangles whose far vertex lies 0.05 to 3 line gaps from the
+  // Small triangles whose far vertex lies 0.05 to 1.8 line gaps from the
   // horizon (q = 0) of their plane: nearly edge-on, as the flagged triangles
   // of the OpenArena maps are (docs/robustness.md, "Flagged triangles").
   // q = a (y - y_h - t (x - x_f)) with the horizon at y_h + t (x - x_f): the
   // lines of constant depth run at slope t across the pixel grid. Heights from
   // a fiftieth of a pixel to 1.5 pixels; every fourth one transposed (y-major).
-  Builder b("horizon", 512, 512, "small near-edge-on triangles 0.05 to 3 line gaps from their horizon");
-  const double gaps[] = {0.05, 0.12, 0.25, 0.5, 0.67, 0.9, 1.2, 3.0};
+  Builder b("horizon", 512, 512, "small near-edge-on triangles 0.05 to 1.8 line gaps from their horizon");
+  const double gaps[] = {0.05, 0.12, 0.25, 0.5, 0.67, 0.9, 1.2, 1.8};
   const double heights[] = {0.02, 0.3, 1.5};
   const double tilts[] = {0.03, -0.11};
   int n = 0;
