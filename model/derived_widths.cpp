@@ -58,6 +58,7 @@ DerivedWidths derive(const Widths& w) {
   // m ((minor - minor_ref) 2^g_frac - g (major - major_ref)), offsets < 2^diff.
   d.kappa_bits = d.diff_bits + w.g_frac + 5;
   d.line_bits = 18;  // |line| <= m (box height + box width) <= 2^16
+  d.line_phase_frac = w.line_phase_frac();
   d.exact_shift_bits = w.g_frac + 16;  // |m g o| <= 4 2^g_frac 8191
   d.t_dist_bits = w.g_frac + 1;        // |t| <= 2^(g_frac - 1)
   d.weight_bits = w.d_frac;            // weight <= 2^(d_frac - 1)

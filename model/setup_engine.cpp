@@ -269,7 +269,7 @@ Setup setup_stage_d(const UnitTriangle& t, const SetupStageA& a, const SetupStag
   // three-bit multiple), move the lines by phi in [0, 1) gaps so that one lies
   // at the far vertex or up to 2^-line_phase_bits gaps beyond it: every
   // covered pixel and its correction neighbour then lie on the near side.
-  const int pb = w.line_phase_bits;
+  const int pb = w.line_phase_frac();
   s.line_phase_bits = pb;
   const Wide q_minor = minor(b.q);
   // With g = 0 every pixel lies on its own line (t = 0) and reads no

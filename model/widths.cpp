@@ -80,11 +80,6 @@ void validate(const Widths& w) {
         w.t_int, w.s_int, w.t_frac, w.s_frac, w.out_frac, acc_bits, w.d_frac, 125 - w.d_frac, t_int_max,
         s_int_max));
   }
-  if (w.line_phase_bits > w.g_frac)
-    throw std::invalid_argument(fmt::format(
-        "line_phase_bits={} needs g_frac >= it (g_frac={}): the phase starts the walker's m g o, "
-        "which has g_frac fraction bits",
-        w.line_phase_bits, w.g_frac));
   if (w.persp_table_log2 > w.persp_frac)
     throw std::invalid_argument(fmt::format(
         "persp_table_log2={} needs persp_frac >= it (persp_frac={}): the table's index is the top "

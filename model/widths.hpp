@@ -13,6 +13,9 @@ struct Widths {
 #include "widths.def"
 #undef CDSIM_PARAM
 
+  // The line phase's fraction bits as the unit uses them: at most g_frac,
+  // since the phase starts the walker's m g o, which has g_frac fraction bits.
+  int line_phase_frac() const { return line_phase_bits < g_frac ? line_phase_bits : g_frac; }
   fx::Format t_format() const { return {t_int, t_frac, true}; }
   fx::Format s_format() const { return {s_int, s_frac, true}; }
   fx::Format out_format() const { return {out_int, out_frac, true}; }

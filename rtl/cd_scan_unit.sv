@@ -144,7 +144,7 @@ module cd_scan_unit #(
   localparam int PixelBits    = `CD_PIXEL_BITS;
   localparam int LineBits     = `CD_LINE_BITS;
   localparam int GBits        = `CD_G_BITS;
-  localparam int PhaseBits    = `CD_LINE_PHASE_BITS > 0 ? `CD_LINE_PHASE_BITS : 1;
+  localparam int PhaseBits    = `CD_LINE_PHASE_FRAC > 0 ? `CD_LINE_PHASE_FRAC : 1;
   localparam int WeightBits   = `CD_WEIGHT_BITS;
   localparam bit Persp        = HasPersp && HasCorrection && HasTable;
   localparam int WordBits     = Persp ? `CD_PERSP_WORD_BITS : `CD_WORD_BITS;

@@ -32,8 +32,8 @@ module column_walker #(
   input  logic [`CD_PIXEL_BITS-1:0]         offset_i,
   // From the setup engine.
   input  logic signed [`CD_G_BITS-1:0]      g_i,
-  // The lines' phase phi (CD_LINE_PHASE_BITS fraction bits of a gap): m g o starts at it.
-  input  logic [(`CD_LINE_PHASE_BITS > 0 ? `CD_LINE_PHASE_BITS : 1)-1:0] line_phase_i,
+  // The lines' phase phi (CD_LINE_PHASE_FRAC fraction bits of a gap): m g o starts at it.
+  input  logic [(`CD_LINE_PHASE_FRAC > 0 ? `CD_LINE_PHASE_FRAC : 1)-1:0] line_phase_i,
   input  logic [1:0]                        density_log2_i,
   input  logic [`CD_PIXEL_BITS-1:0]         major_lo_i,
   input  logic [`CD_PIXEL_BITS-1:0]         minor_lo_i,
@@ -60,7 +60,7 @@ module column_walker #(
 );
 
   localparam int GFrac         = `CD_G_FRAC;
-  localparam int PhaseFrac     = `CD_LINE_PHASE_BITS;
+  localparam int PhaseFrac     = `CD_LINE_PHASE_FRAC;
   localparam int DFrac         = `CD_D_FRAC;
   localparam int PixelBits     = `CD_PIXEL_BITS;
   localparam int LineBits      = `CD_LINE_BITS;

@@ -84,8 +84,8 @@ module setup_engine #(
   output logic                       no_lines_o,
   output logic signed [`CD_LINE_BITS-1:0] pixel_line_lo_o,
   output logic signed [`CD_LINE_BITS-1:0] pixel_line_hi_o,
-  // The lines' phase, CD_LINE_PHASE_BITS fraction bits of a line gap (one bit when there are none).
-  output logic [(`CD_LINE_PHASE_BITS > 0 ? `CD_LINE_PHASE_BITS : 1)-1:0] line_phase_o,
+  // The lines' phase, CD_LINE_PHASE_FRAC fraction bits of a line gap (one bit when there are none).
+  output logic [(`CD_LINE_PHASE_FRAC > 0 ? `CD_LINE_PHASE_FRAC : 1)-1:0] line_phase_o,
   output logic [7:0]                 flags_o,
   // Normalised planes of q, U, V: at the reference pixel, per pixel along the
   // major axis and along the minor axis (per_minor is per line: the minor

@@ -22,7 +22,7 @@ module setup_fill #(
   localparam int PlaneStepUvBits = `CD_PLANE_STEP_UV_BITS,
   localparam int StepUvBits   = `CD_STEP_UV_BITS,
   localparam int LineBits     = `CD_LINE_BITS,
-  localparam int PhaseFrac    = `CD_LINE_PHASE_BITS,
+  localparam int PhaseFrac    = `CD_LINE_PHASE_FRAC,
   localparam int PhaseBits    = PhaseFrac > 0 ? PhaseFrac : 1,
   localparam int AccBits      = `CD_SETUP_ACC_BITS,
   localparam int OperandABits = `CD_SETUP_OPERAND_A_BITS,
@@ -47,7 +47,7 @@ module setup_fill #(
   input  logic signed [StepUvBits-1:0]     step_u_i,
   input  logic signed [StepUvBits-1:0]     step_v_i,
   input  logic signed [LineBits-1:0]       line_lo_i,
-  input  logic [PhaseBits-1:0]             line_phase_i,  // CD_LINE_PHASE_BITS fraction bits of a gap
+  input  logic [PhaseBits-1:0]             line_phase_i,  // CD_LINE_PHASE_FRAC fraction bits of a gap
   input  logic                             guard_i,
   input  logic [Results*AccBits-1:0]       products_i,
   output logic [Terms*OperandABits-1:0]    term_a_o,

@@ -45,7 +45,7 @@ module setup_stage_d #(
   localparam int FreeBits     = DiffBits - 1,
   localparam int BoundNumBits = EdgeNBits - SubpixelBits,
   localparam int PeakBits     = `CD_PEAK_BITS,
-  localparam int PhaseBits    = `CD_LINE_PHASE_BITS > 0 ? `CD_LINE_PHASE_BITS : 1,
+  localparam int PhaseBits    = `CD_LINE_PHASE_FRAC > 0 ? `CD_LINE_PHASE_FRAC : 1,
   localparam int FirstResult  = `CD_SETUP_STEP_U,
   localparam int Results      = `CD_SETUP_Q_LINE - `CD_SETUP_STEP_U,
   localparam int FirstTerm    = `CD_SETUP_TERM_STEP_U,
@@ -106,7 +106,7 @@ module setup_stage_d #(
   output logic signed [LineBits-1:0]       line_lo_o,
   output logic signed [LineBits-1:0]       line_hi_o,
   output logic                             no_lines_o,
-  // The lines' phase, CD_LINE_PHASE_BITS fraction bits of a line gap.
+  // The lines' phase, CD_LINE_PHASE_FRAC fraction bits of a line gap.
   output logic [PhaseBits-1:0]             line_phase_o,
   output logic signed [PlaneRefQBits-1:0]  q_at_ref_o,
   output logic signed [PlaneRefUvBits-1:0] u_at_ref_o,
@@ -302,7 +302,7 @@ module setup_stage_d #(
   // (quarters + 1) / 4 gaps beyond the far vertex, may lie within half a gap
   // of the horizon, h = q_floor m / |q per minor pixel| gaps beyond it:
   // 4 q_floor m < |q per minor pixel| (quarters + 3).
-  localparam int PhaseFrac      = `CD_LINE_PHASE_BITS;
+  localparam int PhaseFrac      = `CD_LINE_PHASE_FRAC;
   localparam int PhaseUnitLog2  = SubpixelBits + GFrac - PhaseFrac;  // 2^-PhaseFrac gaps in kappa's units
   localparam int HorizonBits    = (PeakBits > AxisQBits ? PeakBits : AxisQBits) + 6;
   logic [HorizonBits-1:0]          floor_lines, minor_gaps;

@@ -129,7 +129,7 @@ class IdealConstantDepth {
     const long double major0 = static_cast<long double>(setup_.major_lo) + 0.5L;
     const long double minor0 = static_cast<long double>(setup_.minor_lo) + 0.5L;
     const long double m = setup_.density;
-    const long double minor_at_ref = minor0 + static_cast<long double>(line) / m;
+    const long double minor_at_ref = minor0 + (static_cast<long double>(line) + phase()) / m;
     const long double minor_here = minor_at_ref + g * static_cast<long double>(offset);
     const long double major_here = major0 + static_cast<long double>(offset);
     const auto at = [&](long double major, long double minor) {
@@ -143,8 +143,14 @@ class IdealConstantDepth {
   long double q_on_line(int64_t line) const {
     const long double major0 = static_cast<long double>(setup_.major_lo) + 0.5L;
     const long double minor0 = static_cast<long double>(setup_.minor_lo) + 0.5L;
-    const long double minor = minor0 + static_cast<long double>(line) / setup_.density;
+    const long double minor = minor0 + (static_cast<long double>(line) + phase()) / setup_.density;
     return (setup_.x_major ? planes(major0, minor) : planes(minor, major0))[0];
+  }
+
+  // The lines' phase in gaps: line k lies k + phi gaps from the reference
+  // (the setup's phi, whose placement tests/line_phase_test.cpp checks).
+  long double phase() const {
+    return std::ldexp(static_cast<long double>(setup_.line_phase), -setup_.line_phase_bits);
   }
 
   // cd-persp: the exact 1 / (1 + x) instead of the table's.
@@ -154,7 +160,7 @@ class IdealConstantDepth {
     const int64_t major = setup_.x_major ? x : y, minor = setup_.x_major ? y : x;
     const int64_t offset = major - setup_.major_lo;
     const long double g = std::ldexp(static_cast<long double>(setup_.g), -w_.g_frac);
-    const long double shift = setup_.density * g * static_cast<long double>(offset);
+    const long double shift = setup_.density * g * static_cast<long double>(offset) + phase();
     const long double rounded = std::floor(shift + 0.5L);
     const long double t = rounded - shift;  // line spacings from the pixel's line
     const int64_t line =
