@@ -17,6 +17,10 @@ const std::vector<Design>& all_designs() {
       {"cd-dense2-linear", K::ConstantDepth, 2, true, false, 0, "2 lines per pixel, linear correction"},
       {"cd-persp", K::ConstantDepth, 1, true, false, 0,
        "constant-depth lines, perspective-correct correction (eps per line, a small 1/(1+x) table)", true},
+      {"cd-linear-div", K::ConstantDepth, 1, true, false, 0,
+       "cd-linear, and divide's per-pixel datapath for triangles near their horizon", false, false, true},
+      {"cd-persp-div", K::ConstantDepth, 1, true, false, 0,
+       "cd-persp, and divide's per-pixel datapath for triangles near their horizon", true, false, true},
       {"divide", K::Divide, 1, false, false, 0, "exact per-pixel reciprocal, one pixel per clock"},
       {"kim-iter", K::Kim, 1, false, false, 0,
        "Kim-style: midpoint integer part, iterative restoring-division fraction (reconstruction)"},
@@ -70,6 +74,7 @@ std::vector<UnitParameter> unit_parameters(const std::vector<const Design*>& des
         density_log2 = std::max(density_log2, log2_ceil(d->density));
         correction = correction || d->correction;
         persp = persp || d->persp;
+        divide = divide || d->fallback;
         break;
       case Design::Kind::Divide: divide = true; break;
       case Design::Kind::Kim: (d->pipelined ? kim_pipe : kim_iter) = true; break;

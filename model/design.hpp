@@ -24,6 +24,11 @@ struct Design {
   // Affine kind, subdivided: a quadratic through three exact points per
   // segment (quad-subN, docs/designs.md) instead of a line through two.
   bool quadratic = false;
+  // Constant depth with a divide fallback (cd-linear-div, cd-persp-div): a
+  // triangle whose far vertex lies within 2^fallback_gaps_log2 line gaps of
+  // its horizon is walked by divide's per-pixel datapath instead of the
+  // table (docs/robustness.md, "The divide fallback").
+  bool fallback = false;
 };
 
 const std::vector<Design>& all_designs();
@@ -52,6 +57,7 @@ struct DesignSelect {
   bool correction = false;
   bool persp = false;
   bool quadratic = false;  // affine-subN: quadratic segments (quad-subN)
+  bool fallback = false;   // constant depth: near-horizon triangles by divide
 };
 inline int log2_ceil(int value) {
   int bits = 0;
@@ -67,6 +73,7 @@ inline DesignSelect design_select(const Design& d) {
   s.correction = d.correction;
   s.persp = d.persp;
   s.quadratic = d.quadratic;
+  s.fallback = d.fallback;
   return s;
 }
 

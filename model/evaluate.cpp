@@ -83,6 +83,8 @@ DesignResult evaluate(const PreparedScene& prepared, const Design& design, const
     result.record_cycles += r.record_cycles;
     result.lines += r.lines;
     result.banded_triangles += r.bands > 1;
+    result.fallback_triangles += r.fallback;
+    result.fallback_pixels += r.fallback ? r.pixels : 0;
     (r.x_major ? result.x_major_triangles : result.y_major_triangles) += 1;
     for (int bit = 0; bit < flag::kCount; ++bit) result.flagged_triangles[size_t(bit)] += (r.flags >> bit) & 1;
     for (const Fragment& f : fragments) result.flagged_pixels += (f.flags & flag::kDatapath) != 0;

@@ -44,6 +44,8 @@ struct DesignResult {
   // clocks (timing.hpp), which add up as setup-bound + fill-bound + walk + record.
   int64_t cycles = 0, setup_cycles = 0, fill_cycles = 0, walk_cycles = 0, record_cycles = 0;
   int64_t lines = 0, banded_triangles = 0, x_major_triangles = 0, y_major_triangles = 0;
+  // Designs with a divide fallback: the triangles and pixels it walked.
+  int64_t fallback_triangles = 0, fallback_pixels = 0;
   int table_depth = 0, table_word_bits = 0;
   int64_t table_bits = 0, table_high_water = 0;
   ErrorStats error;             // over every pixel

@@ -63,6 +63,13 @@ std::string results_table(const std::vector<DesignResult>& results, const Widths
                          r.error_unflagged.max, r.error_unflagged.footprint_max,
                          100.0 * r.error_unflagged.texel_mismatch);
   }
+  for (const DesignResult& r : results)
+    if (r.design.fallback)
+      out += fmt::format("{}: the divide fallback walked {} of {} triangles, {} pixels ({:.2f}%; far vertex within "
+                         "2^{} line gaps of the horizon)\n",
+                         r.design.name, r.fallback_triangles, r.triangles, r.fallback_pixels,
+                         r.pixels ? 100.0 * double(r.fallback_pixels) / double(r.pixels) : 0.0,
+                         widths.fallback_gaps_log2);
   std::string model_only;
   for (const DesignResult& r : results)
     if (!has_rtl(r.design)) model_only += (model_only.empty() ? "" : ", ") + r.design.name;
@@ -134,6 +141,10 @@ nlohmann::json results_json(const Scene& scene, const Widths& widths,
     d["lines_filled"] = r.lines;
     d["triangles"] = r.triangles;
     d["banded_triangles"] = r.banded_triangles;
+    if (r.design.fallback) {
+      d["fallback_triangles"] = r.fallback_triangles;
+      d["fallback_pixels"] = r.fallback_pixels;
+    }
     d["x_major_triangles"] = r.x_major_triangles;
     d["y_major_triangles"] = r.y_major_triangles;
     const auto stats = [](const ErrorStats& e) {

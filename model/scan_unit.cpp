@@ -58,7 +58,8 @@ TriangleRecord ScanUnit::compute(const UnitTriangle& triangle, std::vector<Fragm
   if (!setup.empty) {
     work_.walked = true;
     work_.columns = setup.major_count;
-    switch (design_.kind) {
+    work_.kind = setup.fallback ? Design::Kind::Divide : design_.kind;
+    switch (work_.kind) {
       case Design::Kind::ConstantDepth: record = run_constant_depth(setup, fragments); break;
       case Design::Kind::Divide: record = run_divide(setup, fragments); break;
       case Design::Kind::Kim: record = run_kim(setup, fragments); break;
@@ -67,6 +68,7 @@ TriangleRecord ScanUnit::compute(const UnitTriangle& triangle, std::vector<Fragm
     }
   }
   record.x_major = setup.x_major;
+  record.fallback = setup.fallback;
   record.flags |= setup.flags;
   return record;
 }

@@ -34,6 +34,7 @@ struct TriangleRecord {
   int64_t bands = 0;
   int64_t pixels = 0;
   bool x_major = true;
+  bool fallback = false;  // walked by the divide fallback (Design::fallback)
   uint32_t flags = 0;
 };
 

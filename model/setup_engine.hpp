@@ -60,6 +60,10 @@ struct Setup {
   // half a gap of its horizon, or past it.
   int64_t line_phase = 0;
   int line_phase_bits = 0;
+  // A design with a divide fallback: this triangle lies within
+  // 2^fallback_gaps_log2 line gaps of its horizon and is walked per pixel by
+  // divide's datapath, not through the table.
+  bool fallback = false;
   EdgeSet edges;
   std::array<EdgeTracker, 3> edge_trackers{};  // per edge, at the first column (major_lo)
   uint32_t flags = 0;
