@@ -35,7 +35,7 @@ void add_source_options(CLI::App* cmd, RegressOptions& options) {
                   "NAME=VALUE: change a width or microarchitecture parameter (see 'cdsim widths'); "
                   "repeatable, each parameter once");
   cmd->add_option("--design", options.design,
-                  "a design (see 'cdsim designs'), a comma-separated list, or mix (the fifteen designs of the scan unit, in turn; adaptive has a unit of its own: regress it alone)")
+                  "a design (see 'cdsim designs'), a comma-separated list, or mix (the seventeen designs of the scan unit, in turn; adaptive has a unit of its own: regress it alone)")
       ->capture_default_str();
 }
 

@@ -62,7 +62,7 @@ std::vector<Config> product_configs(const std::vector<Design>& designs,
 }
 
 // The default sweep: for each design, one-dimensional sweeps of the widths
-// that decide its accuracy, around the defaults (352 configurations; 343 before adaptive, 298 before quad-subN, 251 before cd-persp).
+// that decide its accuracy, around the defaults (440 configurations; 352 before cd-linear-div and cd-persp-div, 343 before adaptive, 298 before quad-subN, 251 before cd-persp).
 std::vector<Config> default_configs() {
   const std::vector<SweepAxis> constant_depth = {
       {"g_frac", {6, 8, 10, 12, 14, 16, 18, 20}},
@@ -73,6 +73,7 @@ std::vector<Config> default_configs() {
                                         {"persp_table_log2", {0, 1, 2, 3, 5, 6}},
                                         {"eps_frac", {8, 10, 12, 14, 18}},
                                         {"persp_frac", {8, 10, 12, 14, 18}}};
+  const std::vector<SweepAxis> fallback = {{"fallback_gaps_log2", {0, 2, 3, 4, 6, 8}}};
   const std::vector<SweepAxis> divide = {{"recip_bits", {8, 10, 12, 14, 16, 18, 20, 22, 24}},
                                          {"out_frac", {2, 4, 6, 8, 10, 12}}};
   // Kim-style: the full grid of fraction bits and unrolling, so that its
@@ -92,6 +93,7 @@ std::vector<Config> default_configs() {
         axes = constant_depth;
         if (d.correction) axes.insert(axes.end(), correction.begin(), correction.end());
         if (d.persp) axes.insert(axes.end(), persp.begin(), persp.end());
+        if (d.fallback) axes.insert(axes.end(), fallback.begin(), fallback.end());
         break;
       case Design::Kind::Divide: axes = divide; break;
       case Design::Kind::Kim: {

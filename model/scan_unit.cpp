@@ -58,8 +58,8 @@ TriangleRecord ScanUnit::compute(const UnitTriangle& triangle, std::vector<Fragm
   if (!setup.empty) {
     work_.walked = true;
     work_.columns = setup.major_count;
-    work_.kind = setup.fallback ? Design::Kind::Divide : design_.kind;
-    switch (work_.kind) {
+    work_.fallback = setup.fallback;
+    switch (setup.fallback ? Design::Kind::Divide : design_.kind) {
       case Design::Kind::ConstantDepth: record = run_constant_depth(setup, fragments); break;
       case Design::Kind::Divide: record = run_divide(setup, fragments); break;
       case Design::Kind::Kim: record = run_kim(setup, fragments); break;

@@ -70,7 +70,7 @@ int64_t pass_cycles(std::vector<int32_t>::const_iterator first, std::vector<int3
 TrianglePhases UnitTiming::phases(const TriangleWork& work) const {
   TrianglePhases p;
   if (!work.walked) return p;
-  switch (work.kind) {
+  switch (work.fallback ? Design::Kind::Divide : design_.kind) {
     case Design::Kind::ConstantDepth: {
       if (work.band_lines.empty()) {
         // No possible pixel line: the walker still passes over the columns once.

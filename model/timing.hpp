@@ -33,9 +33,9 @@ namespace cdsim {
 struct TriangleWork {
   // False when the triangle ended after setup (an empty box or det = 0).
   bool walked = false;
-  // The datapath that walked it: the design's kind, but Divide for a
-  // constant-depth triangle its design sent to the divide fallback.
-  Design::Kind kind = Design::Kind::ConstantDepth;
+  // A constant-depth triangle its design sent to the divide fallback: walked
+  // as a divide triangle.
+  bool fallback = false;
   // Columns of the box along the major axis; the walker passes over all of
   // them once per band (once when there is no band).
   int64_t columns = 0;
@@ -55,7 +55,7 @@ struct TriangleWork {
 
   void clear() {
     walked = false;
-    kind = Design::Kind::ConstantDepth;
+    fallback = false;
     columns = 0;
     band_lines.clear();
     column_pixels.clear();

@@ -54,6 +54,7 @@ module adaptive_unit #(
   input  logic        correction_i,
   input  logic        persp_i,
   input  logic        quadratic_i,
+  input  logic        fallback_i,
   /* verilator lint_on UNUSEDSIGNAL */
 
   output logic        frag_valid_o,
@@ -220,6 +221,7 @@ module adaptive_unit #(
     .correction_i      (1'b0),
     .persp_i           (1'b0),
     .quadratic_i       (1'b0),
+    .fallback_i        (1'b0),
     .frag_valid_o      (frag_valid_o),
     .frag_ready_i      (frag_ready_i),
     .frag_x_o          (frag_x_o),

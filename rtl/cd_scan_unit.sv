@@ -5,7 +5,8 @@
 // the per-pixel designs (docs/designs.md), each present by parameter, so that
 // a unit synthesised for one design holds only that design's hardware. The
 // design is chosen per triangle by kind_i (when more than one is present),
-// density_log2_i, correction_i and persp_i.
+// density_log2_i, correction_i, persp_i and fallback_i (a constant-depth
+// design whose triangles near their horizon go to the divide datapath).
 //
 // Front, fill and back (docs/rtl.md, "Front and back"): the front accepts a
 // triangle and runs the setup engine (SetupCycles); the fill fills the table
@@ -101,6 +102,7 @@ module cd_scan_unit #(
   input  logic        correction_i,
   input  logic        persp_i,            // cd-persp: the perspective-correct weight
   input  logic        quadratic_i,        // subdivided affine kind: quad-subN (else affine-subN)
+  input  logic        fallback_i,         // constant depth: near-horizon triangles by divide (cd-*-div)
 
   // Fragment: pixel x, y; u, v sign-extended from OutInt.OutFrac; flags.
   output logic        frag_valid_o,
@@ -291,6 +293,7 @@ module cd_scan_unit #(
   // FifoDepth >= 1 (at 2 from the fill stage's copy, p_*), the setup engine's
   // registers themselves when 0.
   logic               setup_empty, setup_no_lines;
+  logic               setup_fallback;  // the divide fallback takes the front's triangle
   logic signed [LineBits-1:0] s_pixel_line_lo, s_pixel_line_hi;
   logic [7:0]         setup_flags;
   logic               s_x_major, setup_x_major;
@@ -380,6 +383,7 @@ module cd_scan_unit #(
     .density_log2_i,
     .correction_i      (correction_i && HasCorrection),
     .lines_i           (tri_lines),
+    .fallback_i        (tri_lines && fallback_i && HasDivide),
     .hold_i            (hold),
     .setup_i           (front_q == FrSetup),
     .stage_count_i     (`CD_SETUP_COUNT_BITS'(fcount_q)),
@@ -391,6 +395,7 @@ module cd_scan_unit #(
     .minor_lo_o        (s_minor_lo),
     .minor_hi_o        (s_minor_hi),
     .no_lines_o        (setup_no_lines),
+    .fallback_o        (setup_fallback),
     .pixel_line_lo_o   (s_pixel_line_lo),
     .pixel_line_hi_o   (s_pixel_line_hi),
     .line_phase_o      (s_line_phase),
@@ -930,7 +935,11 @@ module cd_scan_unit #(
                 HasKim && (Datapaths == 1 || kind == KindKim)};
   endfunction
   logic [3:0] f_modes;
-  assign f_modes = modes_of(f_kind_q, f_segment_log2_q);
+  // The front's triangle walks as divide when the fallback takes it (a
+  // constant-depth design with a divide fallback, near its horizon).
+  logic [1:0] f_kind;
+  assign f_kind = HasDivide && HasTable && !setup_empty && setup_fallback ? KindDivide : f_kind_q;
+  assign f_modes = modes_of(f_kind, f_segment_log2_q);
   assign tri_lines = HasTable && !(|modes_of(kind_i, segment_log2_i));
   assign f_mode_affine = f_modes[2];
   assign f_per_pixel = |f_modes;
@@ -943,14 +952,14 @@ module cd_scan_unit #(
   logic [JobBits-1:0] p_job;
   context_register #(.Bits(JobBits), .Present(FillStage)) u_job_stage (
     .clk_i, .load_i(to_stage),
-    .d_i({f_kind_q, f_segment_log2_q, f_kim_pipelined_q, f_density_log2_q, f_correction_q, f_persp_q, f_quadratic_q, setup_empty,
+    .d_i({f_kind, f_segment_log2_q, f_kim_pipelined_q, f_density_log2_q, f_correction_q, f_persp_q, f_quadratic_q, setup_empty,
           s_job_bands, f_per_pixel, setup_empty ? 8'd0 : setup_flags}),
     .q_o(p_job));
   assign {p_kind, p_segment_log2, p_kim_pipelined, p_density_log2, p_correction, p_persp, p_quadratic, p_empty, p_bands, p_per_pixel,
           p_flags} = p_job;
 
   // The back's triangle: its own copy with FifoDepth >= 1, else the front's.
-  assign kind_q = FifoDepth > 0 ? b_kind_q : f_kind_q;
+  assign kind_q = FifoDepth > 0 ? b_kind_q : f_kind;
   assign segment_log2_q = FifoDepth > 0 ? b_segment_log2_q : f_segment_log2_q;
   assign kim_pipelined_q = FifoDepth > 0 ? b_kim_pipelined_q : f_kim_pipelined_q;
   assign density_log2_q = FifoDepth > 0 ? b_density_log2_q : f_density_log2_q;

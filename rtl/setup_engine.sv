@@ -68,6 +68,7 @@ module setup_engine #(
   input  logic                       correction_i,
   // A constant-depth triangle: its lines may take a phase (setup_stage_d.sv).
   input  logic                       lines_i,
+  input  logic                       fallback_i,  // the triangle's design has a divide fallback
   // A held unit (a fragment refused): the fill pipeline keeps its contents and
   // writes nothing; the stages, on the held stage count, reload what they hold.
   input  logic                       hold_i,
@@ -82,6 +83,7 @@ module setup_engine #(
   output logic [`CD_PIXEL_BITS-1:0]  minor_lo_o,
   output logic [`CD_PIXEL_BITS-1:0]  minor_hi_o,
   output logic                       no_lines_o,
+  output logic                       fallback_o,  // the divide fallback takes the triangle
   output logic signed [`CD_LINE_BITS-1:0] pixel_line_lo_o,
   output logic signed [`CD_LINE_BITS-1:0] pixel_line_hi_o,
   // The lines' phase, CD_LINE_PHASE_FRAC fraction bits of a line gap (one bit when there are none).
@@ -182,7 +184,7 @@ module setup_engine #(
   logic [13:0]                 viewport_width_q, viewport_height_q;
   logic [1:0]                  density_log2_q;
   logic                        guard_q;
-  logic                        lines_q;
+  logic                        lines_q, fallback_q;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -196,6 +198,7 @@ module setup_engine #(
       density_log2_q <= '0;
       guard_q <= 1'b0;
       lines_q <= 1'b0;
+      fallback_q <= 1'b0;
     end else if (load_i) begin
       for (int i = 0; i < 3; i++) begin
         x_q[CoordBits*i +: CoordBits] <= tri_x_i[32*i +: CoordBits];
@@ -209,6 +212,7 @@ module setup_engine #(
       density_log2_q <= density_log2_i;
       guard_q <= correction_i;
       lines_q <= lines_i;
+      fallback_q <= fallback_i;
     end
   end
 
@@ -434,6 +438,7 @@ module setup_engine #(
     .y_i               (y_q),
     .density_log2_i    (density_log2_q),
     .lines_i           (lines_q),
+    .fallback_i        (fallback_q),
     .box_x_lo_i        (box_x_lo_q),
     .box_x_hi_i        (box_x_hi_q),
     .box_y_lo_i        (box_y_lo_q),
@@ -476,6 +481,7 @@ module setup_engine #(
     .line_lo_o         (line_lo_q),
     .line_hi_o         (pixel_line_hi_o),
     .no_lines_o        (no_lines_o),
+    .fallback_o        (fallback_o),
     .line_phase_o      (line_phase_o),
     .q_at_ref_o        (q_at_ref_o),
     .u_at_ref_o        (u_at_ref_o),

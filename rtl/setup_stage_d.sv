@@ -59,6 +59,7 @@ module setup_stage_d #(
   input  logic [3*CoordBits-1:0]           y_i,
   input  logic [1:0]                       density_log2_i,
   input  logic                             lines_i,  // a constant-depth triangle: its lines may take a phase
+  input  logic                             fallback_i,  // ... of a design with a divide fallback
   // Stage A's registers.
   input  logic [PixelBits-1:0]             box_x_lo_i,
   input  logic [PixelBits-1:0]             box_x_hi_i,
@@ -106,6 +107,9 @@ module setup_stage_d #(
   output logic signed [LineBits-1:0]       line_lo_o,
   output logic signed [LineBits-1:0]       line_hi_o,
   output logic                             no_lines_o,
+  // The divide fallback takes the triangle: its far vertex lies within
+  // 2^CD_FALLBACK_GAPS_LOG2 line gaps of its horizon.
+  output logic                             fallback_o,
   // The lines' phase, CD_LINE_PHASE_FRAC fraction bits of a line gap.
   output logic [PhaseBits-1:0]             line_phase_o,
   output logic signed [PlaneRefQBits-1:0]  q_at_ref_o,
@@ -309,6 +313,11 @@ module setup_stage_d #(
   logic [PhaseBits-1:0]            phi, beyond;
   logic [2:0]                      quarters, multiple;  // multiple = quarters + 3
   logic                            phased;
+  // The divide fallback (model/setup_engine.cpp): q_floor m < |q per minor pixel| 2^k.
+  localparam int FallbackLog2   = `CD_FALLBACK_GAPS_LOG2;
+  localparam int FallbackBits   = (PeakBits > AxisQBits ? PeakBits : AxisQBits) + 3 + FallbackLog2;
+  logic [FallbackBits-1:0]         fallback_floor, fallback_gaps;
+  logic                            fallback_d;
   logic signed [KappaBits-1:0]     phase_kappa;
   logic [PhaseBits-1:0]            phase_d;
   logic signed [GFrac+1:0]         phase_g;
@@ -363,6 +372,9 @@ module setup_stage_d #(
     round_last = '0;
     minor_extent = '0;
     no_lines_d = '0;
+    fallback_floor = '0;
+    fallback_gaps = '0;
+    fallback_d = '0;
     if (stage_i && HasLines) begin
       for (int i = 0; i < 3; i++) begin
         kappa = ((KappaBits'(vertex_minor[i]) <<< GFrac) -
@@ -385,6 +397,9 @@ module setup_stage_d #(
       // With g = 0 every pixel lies on its own line and reads no neighbour.
       phased = PhaseFrac > 0 && lines_i && q_axis_minor != '0 && g_d != '0 && floor_lines < minor_gaps;
       if (phased) phase_d = phi;
+      fallback_floor = FallbackBits'(q_floor_i) << density_log2_i;
+      fallback_gaps = (q_axis_minor < 0 ? -(FallbackBits'(q_axis_minor)) : FallbackBits'(q_axis_minor)) << FallbackLog2;
+      fallback_d = fallback_i && q_axis_minor != '0 && g_d != '0 && fallback_floor < fallback_gaps;
       phase_kappa = KappaBits'($signed({1'b0, phase_d})) <<< PhaseUnitLog2;
       phase_g = (GFrac+2)'($signed({1'b0, phase_d})) <<< (GFrac - PhaseFrac);
       // ceil((2 kappa' - scale) / (2 scale)) and ceil((2 kappa' + scale) / (2 scale)) - 1, kappa' = kappa - phi.
@@ -477,6 +492,7 @@ module setup_stage_d #(
       line_lo_o <= LineBits'(line_lo);
       line_hi_o <= LineBits'(line_hi);
       no_lines_o <= no_lines_d;
+      fallback_o <= fallback_d;
       line_phase_o <= phase_d;
       q_at_ref_o <= q_at_ref_d;
       u_at_ref_o <= u_at_ref_d;

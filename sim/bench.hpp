@@ -100,6 +100,7 @@ class Bench : public sc_core::sc_module {
     dut.correction_i(correction);
     dut.persp_i(persp);
     dut.quadratic_i(quadratic);
+    dut.fallback_i(fallback);
     dut.kim_pipelined_i(kim_pipelined);
     dut.frag_valid_o(frag_valid);
     dut.frag_ready_i(frag_ready);
@@ -206,6 +207,7 @@ class Bench : public sc_core::sc_module {
       correction.write(select.correction);
       persp.write(select.persp);
       quadratic.write(select.quadratic);
+      fallback.write(select.fallback);
       kim_pipelined.write(select.kim_pipelined);
       presenting_ = true;
       presented_ = next_job_++;
@@ -315,7 +317,7 @@ class Bench : public sc_core::sc_module {
   sc_core::sc_signal<bool> rst_n{"rst_n"}, tri_valid{"tri_valid"}, tri_ready{"tri_ready"};
   sc_core::sc_signal<uint32_t> tri_x[3], tri_y[3], tri_q[3], tri_u[3], tri_v[3];
   sc_core::sc_signal<uint32_t> viewport_width, viewport_height, kind, segment_log2, density_log2;
-  sc_core::sc_signal<bool> correction, persp, quadratic, kim_pipelined, frag_valid, frag_ready, rec_valid, rec_ready;
+  sc_core::sc_signal<bool> correction, persp, quadratic, fallback, kim_pipelined, frag_valid, frag_ready, rec_valid, rec_ready;
   sc_core::sc_signal<uint32_t> frag_x, frag_y, frag_flags;
   sc_core::sc_signal<uint64_t> frag_u, frag_v, rec_cycles;
   sc_core::sc_signal<uint32_t> rec_lines, rec_bands, rec_pixels, rec_flags;

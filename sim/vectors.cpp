@@ -80,7 +80,7 @@ std::string triangle_word(const Job& job) {
   const DesignSelect d = design_select(*job.design);
   const auto& v = job.triangle.vertex;
   return word(kTriangle,
-              {d.kind, d.segment_log2 | (d.quadratic << 3), d.kim_pipelined, d.density_log2, d.correction | (d.persp << 1),
+              {d.kind, d.segment_log2 | (d.quadratic << 3), d.kim_pipelined, d.density_log2, d.correction | (d.persp << 1) | (d.fallback << 2),
                job.viewport_width, job.viewport_height,
                v[0].x, v[0].y, v[0].q_float, v[0].u, v[0].v,
                v[1].x, v[1].y, v[1].q_float, v[1].u, v[1].v,

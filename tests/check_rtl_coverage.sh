@@ -60,7 +60,7 @@ for p in ["c_state_" + s for s in ("idle", "fill_wait", "init", "column", "pixel
          (["c_front_fill_held"] if scale > 1 else []) + \
          ["c_design_" + s for s in ("cd_none", "cd_linear", "cd_dense2", "cd_dense4", "cd_dense2_linear", "divide",
                                     "kim_iter", "kim_pipe", "affine_sub16", "affine_sub8", "quad_sub16",
-                                    "quad_sub8", "quad_sub32", "affine", "cd_persp")] + \
+                                    "quad_sub8", "quad_sub32", "affine", "cd_persp", "fallback")] + \
          ["c_fragment_stall", "c_flag_banded", "c_flag_table_saturated", "c_flag_output_saturated",
           "c_x_major", "c_y_major"]:
     expect(p not in uncovered, f"cover point {p} hit")

@@ -21,7 +21,7 @@ PY
 "$survey" --cdsim "$cdsim" --pak "$work/one.pk3" --spawns 1 --widths default "$work/out" > "$work/again.txt" 2> "$work/again.err"
 "$survey" --cdsim "$cdsim" --pak "$work/bad.pk3" --spawns 1 --widths default "$work/bad" > "$work/bad.txt"
 "$cdsim" run --scene "$work/one.pk3:maps/oa_dm1.bsp" --spawn 0 --resolution 1920x1080 \
-  --design cd-none,cd-linear,cd-dense2-linear,cd-persp,divide --json "$work/direct.json" > /dev/null
+  --design cd-none,cd-linear,cd-dense2-linear,cd-persp,cd-linear-div,cd-persp-div,divide --json "$work/direct.json" > /dev/null
 /usr/bin/python3 - "$work" <<'PY'
 import csv, json, sys
 work = sys.argv[1]
@@ -37,6 +37,7 @@ for r in rows:
     expect(int(r["pixels"]) == d["pixels"] and int(r["flagged_pixels"]) == d["flagged_pixels"]
            and abs(float(r["footprint_max"]) - d["error"]["footprint_max"]) <= 1e-12
            and abs(float(r["footprint_max_unflagged"]) - d["error_unflagged"]["footprint_max"]) <= 1e-12,
+           and r["fallback_pixels"] == str(d.get("fallback_pixels", "")),
            f"{r['design']}: the row is cdsim run's ({r['pixels']} pixels, fp_max {r['footprint_max']})")
 expect("survey-maps: 1/1" not in open(f"{work}/again.err").read(), "a second call runs nothing")
 expect("1 runs refused" in open(f"{work}/bad.txt").read(), "the broken map is listed as refused")

@@ -144,5 +144,48 @@ TEST(LinePhase, NoLineAPixelUsesLiesPastTheHorizon) {
   }
 }
 
+// The divide fallback (cd-linear-div, cd-persp-div; docs/robustness.md): a
+// triangle with g != 0 whose far vertex lies within 2^fallback_gaps_log2 line
+// gaps of its horizon is walked by divide's datapath, bit for bit divide's
+// pixels; the others by the table, as their design without the fallback.
+TEST(DivideFallback, TakenWhereTheFarVertexLiesWithinItsBound) {
+  std::mt19937_64 rng(42);
+  std::uniform_real_distribution<double> gap(0.02, 80), tilt(-0.95, 0.95);
+  int taken = 0, left = 0;
+  for (const auto& [name, plain] : {std::pair{"cd-linear-div", "cd-linear"}, std::pair{"cd-persp-div", "cd-persp"}}) {
+    for (const int k : {0, 3, 5}) {
+      Widths w;
+      w.fallback_gaps_log2 = k;
+      for (int n = 0; n < 150; ++n) {
+        const ScreenTriangle screen = near_horizon(rng, gap(rng), tilt(rng), n % 2 == 1);
+        const UnitTriangle unit = to_unit(screen, w, 0);
+        const ::cdsim::Setup s = setup_engine(unit, find_design(name), w, kWidth, kHeight);
+        if (s.empty) continue;
+        EXPECT_FALSE(setup_engine(unit, find_design(plain), w, kWidth, kHeight).fallback) << plain;
+        const long double bound = std::ldexp(1.0L, k);
+        const long double h = oracle(screen, unit, s, w).horizon_gaps;
+        if (std::fabs(h / bound - 1) < 1e-3L) continue;  // q's rounding decides
+        SCOPED_TRACE(::testing::Message() << name << " k " << k << " triangle " << n << " horizon "
+                                          << static_cast<double>(h) << " gaps, g " << s.g);
+        EXPECT_EQ(s.fallback, s.g != 0 && h < bound);
+        TriangleRecord record;
+        const auto fragments = testing::run_unit(find_design(name), w, kWidth, kHeight, unit, &record);
+        const auto expected =
+            testing::run_unit(find_design(s.fallback ? "divide" : plain), w, kWidth, kHeight, unit, nullptr);
+        ASSERT_EQ(fragments.size(), expected.size());
+        for (size_t i = 0; i < fragments.size(); ++i) {
+          EXPECT_EQ(fragments[i].u, expected[i].u) << "pixel " << i;
+          EXPECT_EQ(fragments[i].v, expected[i].v) << "pixel " << i;
+          EXPECT_EQ(fragments[i].flags, expected[i].flags) << "pixel " << i;
+        }
+        EXPECT_EQ(record.fallback, s.fallback);
+        (s.fallback ? taken : left) += 1;
+      }
+    }
+  }
+  EXPECT_GT(taken, 100);
+  EXPECT_GT(left, 100);
+}
+
 }  // namespace
 }  // namespace cdsim

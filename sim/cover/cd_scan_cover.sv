@@ -101,6 +101,9 @@ module cd_scan_cover (
   c_design_quad_sub8:        cover property (@(posedge clk_i) sub && segment_log2_q == 3'd3 && quadratic_q);
   c_design_quad_sub32:       cover property (@(posedge clk_i) sub && segment_log2_q == 3'd5 && quadratic_q);
   c_design_affine:           cover property (@(posedge clk_i) record && kind_q == 2'd3 && segment_log2_q == 3'd0);
+  // cd-linear-div, cd-persp-div: a triangle the divide fallback walked (the
+  // back's kind is divide, its design select a constant-depth one's).
+  c_design_fallback:         cover property (@(posedge clk_i) record && kind_q == 2'd1 && correction_q);
 endmodule
 
 bind cd_scan_unit cd_scan_cover u_cover (

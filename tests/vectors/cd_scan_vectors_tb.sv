@@ -35,7 +35,7 @@ module cd_scan_vectors_tb;
     logic [3:0]  segment_log2;  // {quadratic, segment_log2}
     logic [3:0]  kim_pipelined;
     logic [3:0]  density_log2;
-    logic [3:0]  correction;  // {persp, correction}
+    logic [3:0]  correction;  // {fallback, persp, correction}
     logic [15:0] viewport_width;
     logic [15:0] viewport_height;
     logic [31:0] x0, y0, q0, u0, v0;
@@ -111,7 +111,7 @@ module cd_scan_vectors_tb;
     .kind_i(presented.kind[1:0]), .segment_log2_i(presented.segment_log2[2:0]),
     .quadratic_i(presented.segment_log2[3]),
     .kim_pipelined_i(presented.kim_pipelined[0]), .density_log2_i(presented.density_log2[1:0]),
-    .correction_i(presented.correction[0]), .persp_i(presented.correction[1]),
+    .correction_i(presented.correction[0]), .persp_i(presented.correction[1]), .fallback_i(presented.correction[2]),
     .frag_valid_o(frag_valid), .frag_ready_i(frag_ready),
     .frag_x_o(frag_x), .frag_y_o(frag_y), .frag_u_o(frag_u), .frag_v_o(frag_v),
     .frag_flags_o(frag_flags),
