@@ -36,7 +36,7 @@ for r in rows:
     d = direct[r["design"]]
     expect(int(r["pixels"]) == d["pixels"] and int(r["flagged_pixels"]) == d["flagged_pixels"]
            and abs(float(r["footprint_max"]) - d["error"]["footprint_max"]) <= 1e-12
-           and abs(float(r["footprint_max_unflagged"]) - d["error_unflagged"]["footprint_max"]) <= 1e-12,
+           and abs(float(r["footprint_max_unflagged"]) - d["error_unflagged"]["footprint_max"]) <= 1e-12
            and r["fallback_pixels"] == str(d.get("fallback_pixels", "")),
            f"{r['design']}: the row is cdsim run's ({r['pixels']} pixels, fp_max {r['footprint_max']})")
 expect("survey-maps: 1/1" not in open(f"{work}/again.err").read(), "a second call runs nothing")
