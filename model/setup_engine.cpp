@@ -272,6 +272,7 @@ Setup setup_stage_d(const UnitTriangle& t, const SetupStageA& a, const SetupStag
   const int pb = w.line_phase_frac();
   s.line_phase_bits = pb;
   const Wide q_minor = minor(b.q);
+  const Wide abs_minor = q_minor < 0 ? -q_minor : q_minor;  // |q per minor pixel|
   // With g = 0 every pixel lies on its own line (t = 0) and reads no
   // neighbour, so no line past the horizon is ever read: no phase.
   if (pb > 0 && design.kind == Design::Kind::ConstantDepth && q_minor != 0 && s.g != 0) {
@@ -284,15 +285,12 @@ Setup setup_stage_d(const UnitTriangle& t, const SetupStageA& a, const SetupStag
     // d0 < (beyond + 1) 2^-pb, and < (quarters + 1) / 4.
     const Wide beyond = far_low ? phi : (phi == 0 ? 0 : (Wide{1} << pb) - phi);
     const Wide quarters = (4 * beyond + 3) >> pb;  // the least with (beyond + 1) 2^-pb <= (quarters + 1) / 4
-    const Wide abs_minor = q_minor < 0 ? -q_minor : q_minor;
     if (4 * b.q_floor * s.density < abs_minor * (quarters + 3)) s.line_phase = static_cast<int64_t>(phi);
   }
   // The divide fallback: the far vertex within 2^fallback_gaps_log2 gaps of
   // the horizon, q_floor m < |q_minor| 2^k (a shift and a comparator).
-  if (design.fallback && q_minor != 0 && s.g != 0) {
-    const Wide abs_minor = q_minor < 0 ? -q_minor : q_minor;
+  if (design.fallback && q_minor != 0 && s.g != 0)
     s.fallback = b.q_floor * s.density < abs_minor * (Wide{1} << w.fallback_gaps_log2);
-  }
   const Wide phase = Wide{s.line_phase} * (Wide{1} << (sp + gf - pb));  // in kappa's units
   Wide line_lo = fx::ceil_div(2 * (kappa_lo - phase) - scale, 2 * scale);
   Wide line_hi = fx::ceil_div(2 * (kappa_hi - phase) + scale, 2 * scale) - 1;
