@@ -399,7 +399,8 @@ module setup_stage_d #(
       if (phased) phase_d = phi;
       fallback_floor = FallbackBits'(q_floor_i) << density_log2_i;
       fallback_gaps = (q_axis_minor < 0 ? -(FallbackBits'(q_axis_minor)) : FallbackBits'(q_axis_minor)) << FallbackLog2;
-      fallback_d = fallback_i && q_axis_minor != '0 && g_d != '0 && fallback_floor < fallback_gaps;
+      // Only a unit with the per-pixel planes the fallback walks by has it.
+      fallback_d = HasPixelPlanes && fallback_i && q_axis_minor != '0 && g_d != '0 && fallback_floor < fallback_gaps;
       phase_kappa = KappaBits'($signed({1'b0, phase_d})) <<< PhaseUnitLog2;
       phase_g = (GFrac+2)'($signed({1'b0, phase_d})) <<< (GFrac - PhaseFrac);
       // ceil((2 kappa' - scale) / (2 scale)) and ceil((2 kappa' + scale) / (2 scale)) - 1, kappa' = kappa - phi.
