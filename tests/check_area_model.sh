@@ -1,14 +1,15 @@
 #!/usr/bin/env bash
 # The component area model (rtl/area_model.json) against full synthesis: the
 # designs that rtl_synth_design_blocks has synthesised into AREA_CACHE at
-# narrow widths (cd-linear, divide, affine) must be estimated within MAX_ERROR
+# narrow widths (cd-linear and divide; affine too with SCOPE long, which
+# synthesises it: a minute or two of CI time) must be estimated within MAX_ERROR
 # (a fraction, default 0.05) of their synthesised logic area and flip-flop table, with the same blocks, the same table bits and
 # the estimate marked as such; every other design must be estimated (a
 # positive area, marked as an estimate); and `sweep --area-model` must report
 # the figures `cdsim area --model` gives.
-# Usage: check_area_model.sh CDSIM WORKDIR "NARROW SETTINGS" AREA_CACHE [MAX_ERROR]
+# Usage: check_area_model.sh CDSIM WORKDIR "NARROW SETTINGS" AREA_CACHE [MAX_ERROR [SCOPE]]
 set -euo pipefail
-cdsim=$1 work=$2 narrow=$3 cache=$4 max_error=${5:-0.05}
+cdsim=$1 work=$2 narrow=$3 cache=$4 max_error=${5:-0.05} scope=${6:-ci}
 rm -rf "$work" && mkdir -p "$work"
 args=()
 for s in $narrow; do args+=(--set "$s"); done
@@ -16,7 +17,14 @@ for s in $narrow; do args+=(--set "$s"); done
 # Not adaptive: the model does not cover its unit, so --model synthesises it
 # (about 100 s at narrow widths; rtl_synth_design_blocks_long synthesises it).
 designs=$("$cdsim" designs | grep -v 'no RTL yet' | awk '{print $1}' | grep -vx adaptive)
-synthesised="cd-linear divide affine"  # as check_design_area.sh: no synthesis here
+synthesised="cd-linear divide"  # as check_design_area.sh: no synthesis here
+if [[ $scope == long ]]; then
+  synthesised+=" affine"
+else
+  # Each estimate is an elaboration of about 5 s: in CI the synthesised designs
+  # and one of each other family of blocks (fallback, Kim, subdivision, affine).
+  designs=$(printf '%s\n' $designs | grep -xE 'cd-linear|divide|cd-persp-div|kim-pipe|quad-sub8|affine-sub8')
+fi
 for d in $synthesised; do
   "$cdsim" area --design "$d" "${args[@]}" --cache "$cache" --json "$work/synth_$d.json" > /dev/null
 done
