@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # RTL coverage over the CI coverage set (docs/coverage.md): narrow widths on
-# random triangles of the ten fast designs and on the hard cases with all
-# twelve designs mixed, and with early_walk on the constant-depth designs,
+# random triangles of the thirteen fast designs and on the hard cases with all
+# seventeen designs of the scan unit mixed, and with early_walk on the
+# constant-depth designs,
 # with back-pressure, each run adding its data to one folder.
 # Fails if the line coverage of rtl/ is below MIN_LINES percent, if a design's
 # or an FSM state's cover point is never hit, or if the lcov and HTML reports
