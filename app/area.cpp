@@ -35,6 +35,7 @@
 #include "interrupt.hpp"
 #include "progress.hpp"
 #include "rtl_sources.hpp"
+#include "sta.hpp"
 
 namespace cdsim {
 
@@ -43,7 +44,7 @@ namespace fs = std::filesystem;
 namespace {
 
 // Bumped whenever the flow below changes, so that cached results are redone.
-constexpr const char* kFlowVersion = "area-flow-6";
+constexpr const char* kFlowVersion = "area-flow-7";
 
 // Yosys writes "=== cd_scan_unit ===" but "Chip area for module '\cd_scan_unit'".
 std::string strip_escape(const std::string& name) {
@@ -269,12 +270,14 @@ UnitConfig prepare_unit(const Design& design, const Widths& widths, const AreaOp
   uint64_t hash = fnv1a(kFlowVersion);
   hash = fnv1a(c.header, hash);
   hash = fnv1a(fmt::format("{} {} {}", c.top, parameters, options.liberty), hash);
+  if (options.clock_mhz > 0) hash = fnv1a(fmt::format("clock {}", options.clock_mhz), hash);
   for (const fs::path& source : sources) hash = fnv1a(read_text_file(source), hash);
 
   const fs::path cache = options.cache_dir.empty() ? cache_root("area") : fs::path(options.cache_dir);
   check_cache_folder(cache, options.cache_dir.empty() ? "the area cache" : "--cache");
   c.dir = fs::absolute(cache) / fmt::format("{:016x}", hash);
-  c.sram_depth = c.has_table ? (int64_t{widths.table_depth} << log2_ceil(design.density)) * widths.table_banks : 0;
+  c.bank_depth = c.has_table ? int64_t{widths.table_depth} << log2_ceil(design.density) : 0;
+  c.sram_depth = c.bank_depth * widths.table_banks;
   c.word_bits = unit_word_bits(derived, design.persp);
   c.flop_lines = std::min<int64_t>(c.sram_depth, 64);  // 0: no table
   for (const fs::path& source : sources)
@@ -409,8 +412,72 @@ std::string check_synthesis(const nlohmann::json& j) {
       if (std::string wrong = finite_non_negative(b, key); !wrong.empty())
         return fmt::format("block '{}': {}", b.at("name").get<std::string>(), wrong);
   }
+  if (!j.contains("timing") || !j.at("timing").is_object()) return "no 'timing'";
+  const nlohmann::json& t = j.at("timing");
+  if (std::string wrong = finite_non_negative(t, "critical_path_ns"); !wrong.empty()) return "timing: " + wrong;
+  if (t.at("critical_path_ns").get<double>() <= 0) return "timing: a critical path of no length";
+  for (const char* key : {"critical_path_from", "critical_path_to"})
+    if (!t.contains(key) || !t.at(key).is_string()) return fmt::format("timing: no '{}'", key);
+  if (!t.contains("block_critical_path_ns") || !t.at("block_critical_path_ns").is_object())
+    return "timing: no 'block_critical_path_ns'";
+  for (const auto& [name, v] : t.at("block_critical_path_ns").items())
+    if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() <= 0)
+      return fmt::format("timing: block '{}' has critical path {}", name, v.dump());
   return "";
 }
+
+std::string block_of_module(const std::string& base) {
+  static const std::map<std::string, std::string> block_of = {
+      {"setup_engine", "setup engine"},     {"column_walker", "column walker"},
+      {"correction_adder", "correction adder"}, {"plane_accumulator", "plane accumulators"},
+      {"pixel_divide", "pixel multiply"},   {"affine_setup", "affine setup"},
+      {"shift_round", "output rounding"},   {"affine_sub_datapath", "subdivision datapath"},
+      {"quad_sub_datapath", "subdivision datapath"}, {"exact_points", "exact points"},
+      {"kim_datapath", "Kim datapath"},     {"context_register", "contexts"},
+      {"adaptive_split", "split engine"}, {"scanline_table", "scanline table"}};
+  const auto it = block_of.find(base);
+  return it == block_of.end() ? "" : it->second;
+}
+
+std::string block_of_pin(const std::map<std::string, std::string>& instance_module, const std::string& pin) {
+  // The instances that hold the pin's cell, outermost first: "a/b/_12_/D"
+  // lies in "a" and "a/b".
+  std::vector<std::string> bases;
+  for (size_t slash = pin.find('/'); slash != std::string::npos; slash = pin.find('/', slash + 1)) {
+    const auto it = instance_module.find(pin.substr(0, slash));
+    if (it != instance_module.end()) bases.push_back(base_name(it->second));
+  }
+  // As block_areas counts them: a reciprocal apart from the block that holds
+  // it, the adaptive unit's leaf unit looked through, the top's own cells as
+  // control.
+  if (std::find(bases.begin(), bases.end(), "reciprocal") != bases.end()) return "reciprocal";
+  for (const std::string& base : bases)
+    if (base != kScanUnitTop) {
+      const std::string block = block_of_module(base);
+      return block.empty() ? base : block;
+    }
+  return "control";
+}
+
+namespace {
+
+// The worst path of the unit and of each block, as result.json keeps them.
+nlohmann::json block_timing(const StaReport& sta, const std::string& netlist) {
+  std::map<std::string, double> worst;
+  for (const StaEndpoint& e : sta.endpoints) {
+    double& w = worst[block_of_pin(sta.instance_module, e.pin)];
+    w = std::max(w, e.period_ns);
+  }
+  if (sta.endpoints.empty()) throw std::runtime_error(fmt::format("area: OpenSTA timed no flip-flop in {}", netlist));
+  return {{"critical_path_ns", sta.endpoints.front().period_ns},
+          {"critical_path_from", sta.worst_from},
+          {"critical_path_to", sta.worst_to},
+          {"block_critical_path_ns", worst},
+          {"flops_timed", sta.endpoints.size()},
+          {"sta_seconds", sta.seconds}};
+}
+
+}  // namespace
 
 nlohmann::json block_areas(const std::map<std::string, ModuleStat>& unit, const UnitConfig& config,
                            const std::string& log_path, const std::map<std::string, Multiply>& multiplies) {
@@ -420,14 +487,6 @@ nlohmann::json block_areas(const std::map<std::string, ModuleStat>& unit, const 
   // design's unit adds its split engine, and its own cells (the records) to
   // control.
   const Subtree recip = subtree_of(unit, "reciprocal");  // one per design: fill, pixels or midpoints
-  static const std::map<std::string, std::string> block_of = {
-      {"setup_engine", "setup engine"},     {"column_walker", "column walker"},
-      {"correction_adder", "correction adder"}, {"plane_accumulator", "plane accumulators"},
-      {"pixel_divide", "pixel multiply"},   {"affine_setup", "affine setup"},
-      {"shift_round", "output rounding"},   {"affine_sub_datapath", "subdivision datapath"},
-      {"quad_sub_datapath", "subdivision datapath"}, {"exact_points", "exact points"},
-      {"kim_datapath", "Kim datapath"},     {"context_register", "contexts"},
-      {"adaptive_split", "split engine"}};
   std::vector<std::string> order;
   std::map<std::string, Subtree> totals;
   std::map<std::string, Multiply> widest;
@@ -445,8 +504,8 @@ nlohmann::json block_areas(const std::map<std::string, ModuleStat>& unit, const 
         add_blocks(sub);
         continue;
       }
-      const auto it = block_of.find(base);
-      if (it == block_of.end())
+      const std::string block = block_of_module(base);
+      if (block.empty())
         throw std::runtime_error(fmt::format("area: no block for module '{}' in {}", base, log_path));
       Subtree t = subtree(unit, sub);
       const bool owner = base == config.reciprocal_owner;
@@ -454,7 +513,7 @@ nlohmann::json block_areas(const std::map<std::string, ModuleStat>& unit, const 
         t.area -= recip.area;
         t.flops -= recip.flops;
       }
-      add(it->second, static_cast<double>(count) * t.area, count * t.flops,
+      add(block, static_cast<double>(count) * t.area, count * t.flops,
           widest_multiply(unit, multiplies, sub, owner ? "reciprocal" : ""));
     }
     const auto& control = unit.at(top);
@@ -506,6 +565,17 @@ AreaReport area_report(const Design& design, const Widths& widths, const UnitCon
     report.logic_area_um2 += block.area_um2;
     report.blocks.push_back(block);
   }
+  if (synthesised.contains("timing")) {  // the component model's estimates are not timed
+    const nlohmann::json& t = synthesised.at("timing");
+    report.critical_path_ns = t.at("critical_path_ns").get<double>();
+    report.fmax_mhz = 1000.0 / report.critical_path_ns;
+    report.critical_path_from = t.at("critical_path_from").get<std::string>();
+    report.critical_path_to = t.at("critical_path_to").get<std::string>();
+    report.timing_report_path = (config.dir / "timing.rpt").string();
+    const nlohmann::json& per_block = t.at("block_critical_path_ns");
+    for (BlockArea& block : report.blocks)
+      if (per_block.contains(block.name)) block.critical_path_ns = per_block.at(block.name).get<double>();
+  }
   report.flop_table_lines_synthesised = synthesised.at("flop_table_lines").get<int64_t>();
   if (report.flop_table_lines_synthesised > 0)
     report.flop_table_area_um2 = synthesised.at("flop_table_area_um2").get<double>() *
@@ -516,6 +586,58 @@ AreaReport area_report(const Design& design, const Widths& widths, const UnitCon
 }
 
 }  // namespace area_detail
+
+namespace {
+
+// ABC's fast mapping (Yosys's `abc -fast` script: strash; dretime; map), then
+// what a designer's flow adds before timing: buffers on the nets of more
+// than 16 loads (without them a stage enable drives thousands of gate inputs
+// from one X1 cell, and the timing is microseconds), and gates off the
+// critical path sized down again. Given a clock, the mapping and the sizing
+// aim at its period (ABC's -D, in ps). docs/area.md, "Timing".
+void write_abc_script(const fs::path& work, double clock_mhz) {
+  write_file_atomic(work / "abc.constr", "set_driving_cell BUFX2\nset_load 0.02\n");
+  const std::string target = clock_mhz > 0 ? fmt::format(" -D {:.0f}", 1e6 / clock_mhz) : "";
+  write_file_atomic(work / "abc.script",
+                    fmt::format("read_constr -v {}\nstrash\ndretime\nmap{t}\ntopo\nbuffer -N 16\ntopo\n{up}dnsize{t}\n",
+                                (work / "abc.constr").string(), fmt::arg("t", target),
+                                fmt::arg("up", clock_mhz > 0 ? "upsize" + target + "\ntopo\n" : "")));
+}
+
+// The scanline table as OpenSTA sees it (osu018 has no SRAM macro, so no
+// timing model): one flip-flop per port bit, read data leaving a Q at the
+// clock edge (the table reads synchronously), every input ending at a D.
+// Optimistic by the macro's access time less a flip-flop's clock to Q.
+std::string table_timing_model(const UnitConfig& config) {
+  const int addr_bits = std::max(1, log2_ceil(static_cast<int>(config.bank_depth)));
+  const int word = config.word_bits;
+  struct Port {
+    const char* name;
+    int bits;
+    bool output;
+  };
+  const Port ports[] = {{"clk_i", 1, false},          {"write_i", 1, false},
+                        {"write_addr_i", addr_bits, false}, {"write_entry_i", word, false},
+                        {"read_i", 1, false},         {"own_addr_i", addr_bits, false},
+                        {"neighbour_read_i", 1, false}, {"neighbour_addr_i", addr_bits, false},
+                        {"own_entry_o", word, true},  {"neighbour_entry_o", word, true}};
+  std::string names, declarations, cells;
+  for (const Port& p : ports) {
+    names += std::string(names.empty() ? "" : ", ") + p.name;
+    declarations += fmt::format("  {} {}{};\n", p.output ? "output" : "input",
+                                p.bits > 1 ? fmt::format("[{}:0] ", p.bits - 1) : "", p.name);
+    if (std::string(p.name) == "clk_i") continue;
+    for (int i = 0; i < p.bits; ++i) {
+      const std::string bit = p.bits > 1 ? fmt::format("{}[{}]", p.name, i) : p.name;
+      cells += p.output ? fmt::format("  DFFPOSX1 q_{}_{} (.CLK(clk_i), .D(1'b0), .Q({}));\n", p.name, i, bit)
+                        : fmt::format("  DFFPOSX1 d_{}_{} (.CLK(clk_i), .D({}), .Q());\n", p.name, i, bit);
+    }
+  }
+  return fmt::format("// cdsim area: the scanline table's timing model (app/area.cpp, table_timing_model)\n"
+                     "module scanline_table({});\n{}{}endmodule\n", names, declarations, cells);
+}
+
+}  // namespace
 
 AreaReport synthesise_area(const Design& design, const Widths& widths, const AreaOptions& options) {
   // The component model is calibrated on the scan unit's designs: the
@@ -530,20 +652,25 @@ AreaReport synthesise_area(const Design& design, const Widths& widths, const Are
   const bool cached = synthesised.has_value();
   if (!cached) build_result(config, "result.json", [&](const fs::path& work) {
     const std::string& L = options.liberty;
+    write_abc_script(work, options.clock_mhz);
     write_file_atomic(work / "unit.ys", config.unit_front(work) + fmt::format(
         "proc\n"
         "select -assert-none t:$dlatch t:$adlatch t:$dlatchsr t:$sr\n"
         "opt -fast\n"
         "select -assert-none t:$div t:$mod t:$divfloor t:$modfloor\n"
         "wreduce\ntee -q -o {W}/multiplies.il dump t:$mul\nalumacc\nopt -fast\nmemory -nomap\ntechmap\n"
-        "dfflibmap -liberty {L}\nabc -fast -liberty {L}\nopt_clean\n"
+        "dfflibmap -liberty {L}\nabc -liberty {L} -script {W}/abc.script\nopt_clean\n"
         "select -assert-none t:$* t:$paramod* %d\n"
-        "stat -liberty {L}\n", fmt::arg("L", L), fmt::arg("W", work.string())));
+        "stat -liberty {L}\n"
+        // The netlist OpenSTA times, in a form it reads: no undriven bit, no
+        // concatenation or constant expression in an assignment.
+        "setundef -zero\nsplitnets -ports\nopt_clean -purge\nsetparam -unset Depth -unset WordBits t:scanline_table\n"
+        "write_verilog -noattr -noexpr -nohex -nodec {W}/unit.v\n", fmt::arg("L", L), fmt::arg("W", work.string())));
     write_file_atomic(work / "table.ys", config.table_front(work) + fmt::format(
         "proc\nopt -fast\nmemory\nopt -fast\ntechmap\n"
-        "dfflibmap -liberty {L}\nabc -fast -liberty {L}\nopt_clean\n"
+        "dfflibmap -liberty {L}\nabc -liberty {L} -script {W}/abc.script\nopt_clean\n"
         "select -assert-none t:$* t:$paramod* %d\n"
-        "stat -liberty {L}\n", fmt::arg("L", L)));
+        "stat -liberty {L}\n", fmt::arg("L", L), fmt::arg("W", work.string())));
 
     if (!options.quiet)
       std::cerr << fmt::format("area: synthesising {} with yosys onto {} (entry {})\n", design.name,
@@ -555,6 +682,15 @@ AreaReport synthesise_area(const Design& design, const Widths& widths, const Are
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const auto unit = parse_stat(read_text_file(work / "unit.log"));
+    std::vector<fs::path> netlists = {work / "unit.v"};
+    if (config.has_table) {
+      write_file_atomic(work / "table_timing.v", table_timing_model(config));
+      netlists.push_back(work / "table_timing.v");
+    }
+    const StaReport sta = time_netlist(netlists, config.top, L, "clk_i", work);
+    write_file_atomic(work / "timing.rpt", sta.worst_path);
+    std::error_code ec;
+    fs::remove(work / "unit.v", ec);  // tens of megabytes; the script writes it again
     const nlohmann::json result = {
         {"seconds", seconds},
         {"blocks", block_areas(unit, config, (work / "unit.log").string(),
@@ -562,6 +698,7 @@ AreaReport synthesise_area(const Design& design, const Widths& widths, const Are
         {"flop_table_lines", config.flop_lines},
         {"flop_table_area_um2",
          config.has_table ? table_area(parse_stat(read_text_file(work / "table.log"))) : 0.0},
+        {"timing", block_timing(sta, (work / "unit.v").string())},
     };
     if (const std::string wrong = check_synthesis(result); !wrong.empty())
       throw std::runtime_error(fmt::format("area: the synthesis makes no sense ({}); log {}", wrong,
@@ -581,6 +718,7 @@ nlohmann::json area_json(const AreaReport& r, const AreaOptions& options) {
   for (const BlockArea& b : r.blocks)
     blocks.push_back({{"name", b.name}, {"area_um2", b.area_um2}, {"nand2_eq", b.nand2_eq},
                       {"flops", b.flops},
+                      {"critical_path_ns", b.critical_path_ns < 0 ? nlohmann::json(nullptr) : nlohmann::json(b.critical_path_ns)},
                       {"widest_multiply", b.mul_product_bits < 0    ? nlohmann::json(nullptr)
                                           : b.mul_product_bits == 0 ? nlohmann::json::object()
                                                                     : nlohmann::json{{"a_bits", b.mul_a_bits},
@@ -600,6 +738,13 @@ nlohmann::json area_json(const AreaReport& r, const AreaOptions& options) {
           {"flop_table_area_um2", r.flop_table_area_um2},
           {"flop_table_lines_synthesised", r.flop_table_lines_synthesised},
           {"total_area_um2", r.total_area_um2},
+          {"critical_path_ns", r.critical_path_ns < 0 ? nlohmann::json(nullptr) : nlohmann::json(r.critical_path_ns)},
+          {"fmax_mhz", r.critical_path_ns < 0 ? nlohmann::json(nullptr) : nlohmann::json(r.fmax_mhz)},
+          {"critical_path", r.critical_path_ns < 0 ? nlohmann::json(nullptr)
+                                                   : nlohmann::json{{"from", r.critical_path_from},
+                                                                    {"to", r.critical_path_to},
+                                                                    {"report", r.timing_report_path}}},
+          {"clock_target_mhz", options.clock_mhz > 0 ? nlohmann::json(options.clock_mhz) : nlohmann::json(nullptr)},
           {"synthesis_seconds", r.synthesis_seconds},
           {"estimated", r.estimated},
           {"liberty", options.liberty},
@@ -610,35 +755,57 @@ double nand2_area_um2(const AreaOptions& options) {
   return liberty_cell_area(options.liberty, "NAND2X1");
 }
 
-nlohmann::json area_summary_json(const AreaReport& r) {
+nlohmann::json area_summary_json(const AreaReport& r, double px_per_clk) {
   double nand2_eq = 0;
   int64_t flops = 0;
   for (const BlockArea& b : r.blocks) {
     nand2_eq += b.nand2_eq;
     flops += b.flops;
   }
-  return {{"logic_area_um2", r.logic_area_um2}, {"nand2_eq", nand2_eq}, {"flops", flops},
+  nlohmann::json j = {{"logic_area_um2", r.logic_area_um2}, {"nand2_eq", nand2_eq}, {"flops", flops},
           {"sram_bits", r.sram_bits},           {"sram_two_port", r.sram_two_port},
           {"sram_area_um2", r.sram_area_um2},   {"flop_table_area_um2", r.flop_table_area_um2},
           {"total_area_um2", r.total_area_um2}};
+  const bool timed = r.critical_path_ns > 0;
+  j["critical_path_ns"] = timed ? nlohmann::json(r.critical_path_ns) : nlohmann::json(nullptr);
+  j["fmax_mhz"] = timed ? nlohmann::json(r.fmax_mhz) : nlohmann::json(nullptr);
+  if (px_per_clk >= 0) {
+    const double rate = px_per_clk * r.fmax_mhz;
+    j["px_per_clk"] = px_per_clk;
+    j["mpix_per_s"] = timed ? nlohmann::json(rate) : nlohmann::json(nullptr);
+    j["um2_per_mpix_per_s"] = timed && rate > 0 ? nlohmann::json(r.total_area_um2 / rate) : nlohmann::json(nullptr);
+  }
+  return j;
 }
 
-std::string area_table(const std::vector<AreaReport>& reports, const AreaOptions& options) {
+std::string area_table(const std::vector<AreaReport>& reports, const AreaOptions& options,
+                       const std::vector<double>& px_per_clk) {
   std::string out = fmt::format(
       "area: {} onto {} (NAND2X1 = {} um^2), SRAM at {} um^2 per bit / {} efficiency, x {:.3g} where "
       "two-port (2p: early_walk) (docs/area.md)\n",
       options.estimate ? "the component area model, calibrated by Yosys," : "Yosys",
       fs::path(options.liberty).filename().string(), nand2_area_um2(options), options.sram_cell_um2,
       options.sram_efficiency, options.sram_two_port_factor);
-  out += fmt::format("{:<17} {:>13} {:>10} {:>8} {:>10} {:>12} {:>13}\n", "design", "logic um^2",
-                     "NAND2-eq", "flops", "SRAM bits", "SRAM um^2", "total um^2");
-  for (const AreaReport& r : reports) {
-    const nlohmann::json a = area_summary_json(r);
-    out += fmt::format("{:<17} {:>13.0f} {:>10.0f} {:>8} {:>10} {:>12.0f} {:>13.0f}\n", r.design,
+  const bool rates = px_per_clk.size() == reports.size();
+  out += fmt::format("{:<17} {:>13} {:>10} {:>8} {:>10} {:>12} {:>13} {:>9}", "design", "logic um^2",
+                     "NAND2-eq", "flops", "SRAM bits", "SRAM um^2", "total um^2", "f_max MHz");
+  out += rates ? fmt::format(" {:>7} {:>8} {:>13}\n", "px/clk", "Mpx/s", "um^2/(Mpx/s)") : "\n";
+  for (size_t i = 0; i < reports.size(); ++i) {
+    const AreaReport& r = reports[i];
+    const nlohmann::json a = area_summary_json(r, rates ? px_per_clk[i] : -1);
+    const auto number = [&](const char* key, const char* format) {
+      return a.at(key).is_null() ? std::string("?") : fmt::format(fmt::runtime(format), a.at(key).get<double>());
+    };
+    out += fmt::format("{:<17} {:>13.0f} {:>10.0f} {:>8} {:>10} {:>12.0f} {:>13.0f} {:>9}", r.design,
                        r.logic_area_um2, a.at("nand2_eq").get<double>(), a.at("flops").get<int64_t>(),
                        fmt::format("{}{}", r.sram_bits, r.sram_two_port ? " 2p" : ""), r.sram_area_um2,
-                       r.total_area_um2);
+                       r.total_area_um2, number("fmax_mhz", "{:.1f}"));
+    out += rates ? fmt::format(" {:>7.3f} {:>8} {:>13}\n", px_per_clk[i], number("mpix_per_s", "{:.1f}"),
+                               number("um2_per_mpix_per_s", "{:.0f}"))
+                 : "\n";
   }
+  out += fmt::format("(f_max: OpenSTA on the synthesised netlist, ideal clock, no wires{}; docs/area.md)\n",
+                     rates ? "; Mpx/s = px/clk on the scene x f_max" : "");
   return out;
 }
 
@@ -676,6 +843,10 @@ CLI::App* add_area_command(CLI::App& app, AreaOptions& options) {
   cmd->add_option("--cache", options.cache_dir,
                   "cache folder (default $XDG_CACHE_HOME/cdsim/area or ~/.cache/cdsim/area)");
   cmd->add_option("--liberty", options.liberty, "standard-cell liberty file")->capture_default_str();
+  cmd->add_option("--clock-mhz", options.clock_mhz,
+                  "map for this clock (ABC's delay target: faster gates where the period needs them, more area) "
+                  "and say whether the timing meets it")
+      ->check(CLI::Range(1.0, 2000.0));
   cmd->add_flag("--model", options.estimate,
                 "estimate by the component area model (an elaboration of about 5 s, no mapping) "
                 "instead of synthesising; cdsim area-model calibrates it");
@@ -710,15 +881,28 @@ int run_area_command(const AreaOptions& options) {
                                        "elaborated in {:.0f} s)", r.log_path, r.synthesis_seconds)
              : r.cached  ? fmt::format("cached (synthesised in {:.0f} s)", r.synthesis_seconds)
                          : fmt::format("synthesised in {:.0f} s", r.synthesis_seconds));
-  fmt::print("\n{:<20} {:>14} {:>11} {:>8} {:>12}\n", "block", "area um^2", "NAND2-eq", "flops",
-             "widest mul");
+  fmt::print("\n{:<20} {:>14} {:>11} {:>8} {:>14} {:>8}\n", "block", "area um^2", "NAND2-eq", "flops",
+             "widest mul", "path ns");
+  const auto path_ns = [&](double ns) {
+    return r.estimated ? std::string("?") : ns < 0 ? std::string("-") : fmt::format("{:.2f}", ns);
+  };
   for (const BlockArea& b : r.blocks)
-    fmt::print("{:<20} {:>14.0f} {:>11.0f} {:>8} {:>14}\n", b.name, b.area_um2, b.nand2_eq, b.flops,
+    fmt::print("{:<20} {:>14.0f} {:>11.0f} {:>8} {:>14} {:>8}\n", b.name, b.area_um2, b.nand2_eq, b.flops,
                b.mul_product_bits < 0    ? std::string("?")
                : b.mul_product_bits == 0 ? std::string("-")
-                                         : fmt::format("{}x{}={}", b.mul_a_bits, b.mul_b_bits, b.mul_product_bits));
-  fmt::print("(widest mul: the block's multiply with the widest product, A x B = product bits, as Yosys sizes it before mapping)\n");
+                                         : fmt::format("{}x{}={}", b.mul_a_bits, b.mul_b_bits, b.mul_product_bits),
+               path_ns(b.critical_path_ns));
+  fmt::print("(widest mul: the block's multiply with the widest product, A x B = product bits, as Yosys sizes it before mapping;\n"
+             " path ns: the shortest clock period that the worst path ending at the block's flip-flops meets, by OpenSTA)\n");
   fmt::print("{:<20} {:>14.0f}\n", "logic total", r.logic_area_um2);
+  if (r.critical_path_ns > 0) {
+    fmt::print("\nclock: critical path {:.2f} ns, f_max {:.1f} MHz (OpenSTA on the mapped netlist: ideal clock, no wires; "
+               "docs/area.md)\n  from {}\n  to   {}\n  report {}\n",
+               r.critical_path_ns, r.fmax_mhz, r.critical_path_from, r.critical_path_to, r.timing_report_path);
+    if (options.clock_mhz > 0)
+      fmt::print("  mapped for {} MHz ({:.2f} ns): {} (slack {:+.2f} ns)\n", options.clock_mhz, 1000 / options.clock_mhz,
+                 r.fmax_mhz >= options.clock_mhz ? "met" : "NOT met", 1000 / options.clock_mhz - r.critical_path_ns);
+  }
   if (r.sram_bits == 0) {
     fmt::print("\nno scanline table\ntotal (logic): {:.0f} um^2\n", r.total_area_um2);
   } else {

@@ -25,6 +25,10 @@ struct BlockArea {
   // operand and product bits. All 0: no multiply; all -1: not known (the
   // component model's estimates).
   int mul_a_bits = -1, mul_b_bits = -1, mul_product_bits = -1;
+  // The shortest clock period that the worst path ending at one of the
+  // block's flip-flops meets (OpenSTA: clock to Q, logic, setup); -1 when no
+  // path ends in the block (it has no flip-flop, or an estimate: not timed).
+  double critical_path_ns = -1;
 };
 
 struct AreaReport {
@@ -42,6 +46,13 @@ struct AreaReport {
   bool cached = false;
   bool estimated = false;          // by the component area model (area_model.hpp), not synthesis
   std::string log_path;
+  // Static timing of the synthesised netlist (app/sta.hpp; not of estimates):
+  // the unit's worst flip-flop to flip-flop path as a clock period, and the
+  // clock it allows. -1 and 0 when not timed.
+  double critical_path_ns = -1;
+  double fmax_mhz = 0;
+  std::string critical_path_from, critical_path_to;  // its start and end points
+  std::string timing_report_path;                    // OpenSTA's report of that path
 };
 
 struct AreaOptions {
@@ -57,6 +68,7 @@ struct AreaOptions {
   double sram_two_port_factor = 4.0 / 3.0;
   bool quiet = false;            // no "synthesising" line (batches show a progress bar instead)
   bool estimate = false;         // the component area model instead of synthesis (area_model.hpp)
+  double clock_mhz = 0;          // > 0: map for this clock (ABC's delay target; docs/area.md, "Timing")
   std::string model_path;        // its calibration (default: rtl/area_model.json)
 };
 
@@ -80,11 +92,15 @@ std::vector<AreaReport> synthesise_areas(const std::vector<AreaJob>& list,
                                          const AreaOptions& options, unsigned threads);
 
 // The keys of the per-design area summary `run` and `sweep` print and write:
-// logic um^2, NAND2-eq, SRAM bits, SRAM um^2, total um^2.
-nlohmann::json area_summary_json(const AreaReport& report);
+// logic um^2, NAND2-eq, SRAM bits, SRAM um^2, total um^2, the critical path
+// and f_max (null for estimates); given the design's px/clk on the scene
+// (>= 0), also px_per_clk, mpix_per_s (px/clk x f_max) and um2_per_mpix_per_s.
+nlohmann::json area_summary_json(const AreaReport& report, double px_per_clk = -1);
 double nand2_area_um2(const AreaOptions& options);
-// The readable table of those keys, one line per report.
-std::string area_table(const std::vector<AreaReport>& reports, const AreaOptions& options);
+// The readable table of those keys, one line per report, with the rates when
+// px_per_clk holds one per report.
+std::string area_table(const std::vector<AreaReport>& reports, const AreaOptions& options,
+                       const std::vector<double>& px_per_clk = {});
 
 CLI::App* add_area_command(CLI::App& app, AreaOptions& options);
 int run_area_command(const AreaOptions& options);

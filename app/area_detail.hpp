@@ -37,6 +37,7 @@ struct UnitConfig {
   std::string reciprocal_owner;   // the module whose reciprocal is reported apart ("": none)
   bool has_table = false;
   int64_t sram_depth = 0;         // table lines, density included
+  int64_t bank_depth = 0;         // lines of one bank (scanline_table's Depth)
   int64_t flop_lines = 0;         // lines of the synthesised flip-flop table (0: no table)
   int word_bits = 0;
 
@@ -96,6 +97,12 @@ std::map<std::string, Multiply> parse_multiplies(const std::string& dump);
 nlohmann::json block_areas(const std::map<std::string, ModuleStat>& unit, const UnitConfig& config,
                            const std::string& log_path, const std::map<std::string, Multiply>& multiplies);
 double table_area(const std::map<std::string, ModuleStat>& table);
+// The block a module's instances are counted in ("column_walker" -> "column
+// walker"; "" for none).
+std::string block_of_module(const std::string& base);
+// The block of a flip-flop pin of the timed netlist ("u_walker/_12_/D"), by
+// the modules of the instances that hold it, as block_areas counts cells.
+std::string block_of_pin(const std::map<std::string, std::string>& instance_module, const std::string& pin);
 // The report from cached block areas: SRAM, flop table scaled to full depth, totals.
 AreaReport area_report(const Design& design, const Widths& widths, const UnitConfig& config,
                        const nlohmann::json& synthesised, const AreaOptions& options);

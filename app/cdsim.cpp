@@ -94,13 +94,23 @@ int run_command(const CommonOptions& options, const std::string& json_path, bool
       if (has_rtl(d)) jobs.push_back({d, widths});
     std::fflush(stdout);
     const std::vector<AreaReport> areas = synthesise_areas(jobs, area_options, 0);
-    std::cout << '\n' << area_table(areas, area_options);
+    std::vector<double> px_per_clk;
+    for (const DesignResult& r : results)
+      if (has_rtl(r.design)) px_per_clk.push_back(r.pixels_per_clock());
+    std::cout << '\n' << area_table(areas, area_options, px_per_clk);
     std::string missing;
     for (const Design& d : designs)
       if (!has_rtl(d)) missing += (missing.empty() ? "" : ", ") + d.name;
     if (!missing.empty()) std::cout << "no RTL, so no area: " << missing << '\n';
     for (size_t i = 0, a = 0; i < designs.size(); ++i)
-      json["designs"][i]["area"] = has_rtl(designs[i]) ? area_json(areas[a++], area_options) : nlohmann::json();
+      if (has_rtl(designs[i])) {
+        const nlohmann::json rates = area_summary_json(areas[a], results[i].pixels_per_clock());
+        json["designs"][i]["area"] = area_json(areas[a++], area_options);
+        for (const char* key : {"px_per_clk", "mpix_per_s", "um2_per_mpix_per_s"})
+          json["designs"][i]["area"][key] = rates.at(key);
+      } else {
+        json["designs"][i]["area"] = nlohmann::json();
+      }
   }
   if (!json_path.empty()) {
     write_file_atomic(json_path, json.dump(2) + '\n');

@@ -221,22 +221,32 @@ int run_choose_command(const ChooseOptions& options) {
     fmt::print("\n");
   }
 
-  fmt::print("{:<4} {:<17} {:<5} {:>13} {:>13} {:<6} {:>12} {:>9} {:>10}  {}\n", "rank", "design", "meets",
-             "total um^2", "logic um^2", "table", "cycles", "cyc/pixel", "error", "widths (other than default)");
+  // The rates: px/clk over all the scenes, f_max from the synthesis's timing.
+  const auto px_per_clk = [](const Candidate& c) { return c.cycles ? double(c.pixels) / double(c.cycles) : 0.0; };
+  const auto timed = [](const Candidate& c) { return c.area && c.area->critical_path_ns > 0; };
+  fmt::print("{:<4} {:<17} {:<5} {:>13} {:>13} {:<6} {:>12} {:>9} {:>7} {:>6} {:>7} {:>10}  {}\n", "rank", "design",
+             "meets", "total um^2", "logic um^2", "table", "cycles", "cyc/pixel", "px/clk", "f_max", "Mpx/s", "error",
+             "widths (other than default)");
   int rank = 0;
   for (const Candidate& c : candidates) {
     const std::string place = group(c) == 0 ? fmt::format("{}", ++rank) : "-";
     if (!c.meets) {
-      fmt::print("{:<4} {:<17} {:<5} {:>13} {:>13} {:<6} {:>12} {:>9} {:>10.4g}  {}\n", place, c.design.name,
-                 "no", "-", "-", "-", "-", "-", c.error, "not reachable: the error at the widest widths");
+      fmt::print("{:<4} {:<17} {:<5} {:>13} {:>13} {:<6} {:>12} {:>9} {:>7} {:>6} {:>7} {:>10.4g}  {}\n", place,
+                 c.design.name, "no", "-", "-", "-", "-", "-", "-", "-", "-", c.error,
+                 "not reachable: the error at the widest widths");
       continue;
     }
     const std::string area = c.area ? fmt::format("{:.0f}", c.total_area_um2) : "no RTL";
     const std::string logic = c.area ? fmt::format("{:.0f}", c.area->logic_area_um2) : "-";
-    fmt::print("{:<4} {:<17} {:<5} {:>13} {:>13} {:<6} {:>12} {:>9.3f} {:>10.4g}  {}\n", place,
+    const std::string fmax = timed(c) ? fmt::format("{:.1f}", c.area->fmax_mhz) : "-";
+    const std::string rate = timed(c) ? fmt::format("{:.1f}", px_per_clk(c) * c.area->fmax_mhz) : "-";
+    fmt::print("{:<4} {:<17} {:<5} {:>13} {:>13} {:<6} {:>12} {:>9.3f} {:>7.3f} {:>6} {:>7} {:>10.4g}  {}\n", place,
                c.design.name, "yes", area, logic, c.table.empty() ? "none" : c.table, c.cycles,
-               c.pixels ? double(c.cycles) / double(c.pixels) : 0.0, c.error, sized_widths(c));
+               c.pixels ? double(c.cycles) / double(c.pixels) : 0.0, px_per_clk(c), fmax, rate, c.error,
+               sized_widths(c));
   }
+  fmt::print("(px/clk over all the scenes; f_max in MHz, OpenSTA on the synthesised netlist; Mpx/s = px/clk x f_max; "
+             "docs/area.md)\n");
   if (!candidates.empty() && group(candidates.front()) == 0)
     fmt::print("\nwinner: {} at {:.0f} um^2 ({} cycles); RTL check: {}\n", candidates.front().design.name,
                candidates.front().total_area_um2, candidates.front().cycles,
@@ -262,10 +272,14 @@ int run_choose_command(const ChooseOptions& options) {
                             {"pixels", c.pixels},
                             {"error", c.error},
                             {"widths", widths_json(c.widths)},
-                            {"rtl_verified", c.rtl_verified == "yes"}};
+                            {"rtl_verified", c.rtl_verified == "yes"},
+                            {"px_per_clk", c.meets ? nlohmann::json(px_per_clk(c)) : nlohmann::json()},
+                            {"fmax_mhz", timed(c) ? nlohmann::json(c.area->fmax_mhz) : nlohmann::json()},
+                            {"mpix_per_s", timed(c) ? nlohmann::json(px_per_clk(c) * c.area->fmax_mhz)
+                                                    : nlohmann::json()}};
       row["rtl_check"] = c.rtl_verified;
       if (c.area) {
-        row["area"] = area_summary_json(*c.area);
+        row["area"] = area_summary_json(*c.area, px_per_clk(c));
         row["table"] = c.table.empty() ? nlohmann::json() : nlohmann::json(c.table);
         row["unbanded_cycles"] = c.unbanded_cycles;
       }

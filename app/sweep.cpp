@@ -127,7 +127,8 @@ std::string csv_header() {
   h += ",swept,pixels,cycles,pixels_per_clock,table_entries,table_bits,error_mean,"
        "error_rms,error_p99,error_max,footprint_max,texel_mismatch,over_lsb,flagged_triangles";
   // Empty unless the sweep ran with --area and the design has RTL.
-  h += ",logic_area_um2,nand2_eq,flops,sram_bits,sram_area_um2,flop_table_area_um2,total_area_um2";
+  h += ",logic_area_um2,nand2_eq,flops,sram_bits,sram_area_um2,flop_table_area_um2,total_area_um2,"
+       "fmax_mhz,mpix_per_s";
   return h;
 }
 
@@ -154,12 +155,15 @@ std::string csv_row(const std::string& scene, const Config& c, const DesignResul
                      r.error.max, r.error.footprint_max, r.error.texel_mismatch, r.error.over_lsb,
                      flagged(r));
   if (area) {
-    const nlohmann::json a = area_summary_json(*area);
+    const nlohmann::json a = area_summary_json(*area, r.pixels_per_clock());
     row += fmt::format(",{:.1f},{:.1f},{},{},{:.1f},{:.1f},{:.1f}", area->logic_area_um2,
                        a.at("nand2_eq").get<double>(), a.at("flops").get<int64_t>(), area->sram_bits,
                        area->sram_area_um2, area->flop_table_area_um2, area->total_area_um2);
+    // Empty for an estimate: the component model does not time.
+    for (const char* key : {"fmax_mhz", "mpix_per_s"})
+      row += a.at(key).is_null() ? "," : fmt::format(",{:.2f}", a.at(key).get<double>());
   } else {
-    row += ",,,,,,,";
+    row += ",,,,,,,,,";
   }
   return row;
 }
@@ -345,7 +349,7 @@ int run_sweep_command(const SweepOptions& options) {
     row["scene"] = scene.name;
     for (const auto& p : param_table()) row["widths"][p.name] = configs[i].widths.*(p.field);
     for (const auto& [name, value] : configs[i].swept) row["swept"][name] = value;
-    if (areas[i]) row["area"] = area_summary_json(*areas[i]);
+    if (areas[i]) row["area"] = area_summary_json(*areas[i], results[i].pixels_per_clock());
     json["rows"].push_back(row);
   }
   if (!shard.whole())

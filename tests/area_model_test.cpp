@@ -322,8 +322,18 @@ TEST(AreaCache, ACorruptOrNonsensicalResultIsNamedAndNotUsed) {
                                {"blocks", {{{"name", "control"}, {"area_um2", 120.0}, {"flops", 4},
                                             {"mul_a_bits", 0}, {"mul_b_bits", 0}, {"mul_product_bits", 0}}}},
                                {"flop_table_lines", 0},
-                               {"flop_table_area_um2", 0.0}};
+                               {"flop_table_area_um2", 0.0},
+                               {"timing", {{"critical_path_ns", 7.5},
+                                           {"critical_path_from", "_1_"},
+                                           {"critical_path_to", "_2_"},
+                                           {"block_critical_path_ns", {{"control", 7.5}}}}}};
   EXPECT_EQ(ad::check_synthesis(good), "");
+  nlohmann::json untimed = good;  // cached by a flow without timing
+  untimed.erase("timing");
+  EXPECT_EQ(ad::check_synthesis(untimed), "no 'timing'");
+  nlohmann::json no_path = good;
+  no_path["timing"]["block_critical_path_ns"]["control"] = 0.0;
+  EXPECT_EQ(ad::check_synthesis(no_path), "timing: block 'control' has critical path 0.0");
   nlohmann::json negative = good;
   negative["blocks"][0]["area_um2"] = -5.0;
   EXPECT_EQ(ad::check_synthesis(negative), "block 'control': 'area_um2' is -5.0, not a finite number >= 0");

@@ -55,8 +55,18 @@ for row in run["designs"]:
     area = json.load(open(f"{work}/area_{d}.json"))
     expect(set(area) <= set(row["area"]), f"run --json: {d}'s 'area' holds every key of cdsim area --json")
     expect(all(close(row["area"][k], area[k]) for k in keys), f"run --area: {d} as cdsim area reports it")
+    # The rates: f_max from cdsim area's timing, px/clk from the run itself.
+    expect(area["fmax_mhz"] > 0 and close(area["fmax_mhz"], 1000 / area["critical_path_ns"]),
+           f"cdsim area: {d}'s f_max is 1000 / its critical path ({area['fmax_mhz']:.1f} MHz)")
+    expect(close(row["area"]["px_per_clk"], row["pixels"] / row["cycles"]),
+           f"run --area: {d}'s px/clk is its pixels over its cycles")
+    expect(close(row["area"]["mpix_per_s"], row["pixels"] / row["cycles"] * area["fmax_mhz"]),
+           f"run --area: {d}'s Mpx/s is px/clk x f_max ({row['area']['mpix_per_s']:.2f})")
+    expect(close(row["area"]["um2_per_mpix_per_s"], area["total_area_um2"] / row["area"]["mpix_per_s"]),
+           f"run --area: {d}'s area per Mpx/s")
 text = open(f"{work}/run.txt").read()
 expect(f"{area['total_area_um2']:.0f}" in text, "run --area prints the total in its table")
+expect(f"{area['fmax_mhz']:.1f}" in text and "Mpx/s" in text, "run --area prints f_max and Mpx/s in its table")
 
 rows = list(csv.DictReader(open(f"{work}/sweep/sweep.csv")))
 expect(len(rows) == 2, "sweep: two configurations")
@@ -65,6 +75,9 @@ for r in rows:
     expect(all(close_csv(float(r[k]), area[k]) for k in keys), f"sweep --area: {r['design']} as cdsim area reports it")
     expect(close_csv(float(r["total_area_um2"]), float(r["logic_area_um2"]) + float(r["sram_area_um2"])),
            "sweep: total = logic + SRAM")
+    expect(abs(float(r["fmax_mhz"]) - area["fmax_mhz"]) <= 0.005, f"sweep --area: {r['design']}'s f_max as cdsim area's")
+    expect(abs(float(r["mpix_per_s"]) - float(r["pixels_per_clock"]) * area["fmax_mhz"]) <= 0.01,
+           f"sweep --area: {r['design']}'s Mpx/s = px/clk x f_max")
 sweep = json.load(open(f"{work}/sweep/sweep.json"))
 expect(all("area" in r for r in sweep["rows"]), "sweep.json: every row has its area")
 
@@ -101,6 +114,9 @@ for r in met:
     expect(out.returncode == 0, f"choose: cdsim area at {r['design']}'s widths")
     area = json.load(open(f"{work}/check_area_{r['design']}.json"))
     expect(close(area["total_area_um2"], r["total_area_um2"]), f"choose: {r['design']}'s area is what cdsim area synthesises")
+    expect(close(r["fmax_mhz"], area["fmax_mhz"]) and close(r["px_per_clk"], r["pixels"] / r["cycles"])
+           and close(r["mpix_per_s"], r["px_per_clk"] * r["fmax_mhz"]),
+           f"choose: {r['design']}'s f_max is cdsim area's, its Mpx/s px/clk x f_max ({r['mpix_per_s']:.2f})")
 expect(ranking[0]["rtl_verified"] is True, "choose: the winner passed its RTL check")
 expect("winner: " + ranking[0]["design"] in open(f"{work}/choose.txt").read(), "choose prints the winner")
 two = json.load(open(f"{work}/choose2.json"))

@@ -1,0 +1,119 @@
+// Static timing (app/sta.cpp) on netlists whose paths are known from the
+// liberty by hand: a flip-flop, a chain of K inverters, a flip-flop, written
+// here in osu018 cells and timed by OpenSTA through cdsim's own script and
+// parser. The bands are read off osu018_stdcells.lib, not off OpenSTA:
+//  - DFFPOSX1: clock to Q 0.094-0.17 ns (cell_rise and cell_fall at loads of
+//    0.005-0.0125 pF and the fastest clock), setup 0.17-0.29 ns (setup_rising
+//    at transitions up to 0.3 ns), so a direct flip-flop to flip-flop path
+//    needs 0.26-0.46 ns: the band is 0.25-0.50.
+//  - INVX1 driving one INVX1 input (0.0093 pF, between the tables' 0.005 and
+//    0.0125 pF rows) at the first transition column: cell_fall 0.031-0.045 ns,
+//    cell_rise 0.038-0.053 ns, so each inverter of a chain adds 0.030-0.060.
+// And what a designer relies on: a flip-flop in the middle of the chain
+// halves its path, and each path is counted in the block of the module that
+// holds its end.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <string>
+
+#include "area_detail.hpp"
+#include "cache_files.hpp"
+#include "sta.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* kLiberty = "/usr/share/qflow/tech/osu018/osu018_stdcells.lib";
+
+class Sta : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("cdsim_sta_test_" + std::to_string(::getpid()) + "_" +
+                                       ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  // launch -> K inverters -> capture; with `pipelined`, a third flip-flop
+  // after the first K / 2 inverters. In module `sub` when `wrap` is given,
+  // instanced as u_sub in the top.
+  cdsim::StaReport time_chain(int k, bool pipelined, const std::string& wrap = "") {
+    std::string body;
+    body += "  DFFPOSX1 launch (.CLK(clk_i), .D(d_i), .Q(n0));\n";
+    for (int i = 1; i <= k; ++i) {
+      const std::string in = pipelined && i == k / 2 + 1 ? "p" : "n" + std::to_string(i - 1);
+      body += "  INVX1 inv" + std::to_string(i) + " (.A(" + in + "), .Y(n" + std::to_string(i) + "));\n";
+    }
+    if (pipelined) body += "  DFFPOSX1 pipe (.CLK(clk_i), .D(n" + std::to_string(k / 2) + "), .Q(p));\n";
+    body += "  DFFPOSX1 capture (.CLK(clk_i), .D(n" + std::to_string(k) + "), .Q(q_o));\n";
+    std::string wires = "  wire p";
+    for (int i = 0; i <= k; ++i) wires += ", n" + std::to_string(i);
+    wires += ";\n";
+    const std::string ports = "(clk_i, d_i, q_o);\n  input clk_i;\n  input d_i;\n  output q_o;\n";
+    std::string netlist;
+    if (wrap.empty()) {
+      netlist = "module chain" + ports + wires + body + "endmodule\n";
+    } else {
+      netlist = "module " + wrap + ports + wires + body + "endmodule\n" + "module chain" + ports +
+                "  " + wrap + " u_sub (.clk_i(clk_i), .d_i(d_i), .q_o(q_o));\nendmodule\n";
+    }
+    const fs::path file = dir_ / "chain.v";
+    cdsim::write_file_atomic(file, netlist);
+    return cdsim::time_netlist({file}, "chain", kLiberty, "clk_i", dir_);
+  }
+
+  fs::path dir_;
+};
+
+TEST_F(Sta, FlopToFlopIsClockToQPlusSetup) {
+  const cdsim::StaReport r = time_chain(0, false);
+  ASSERT_EQ(r.endpoints.size(), 1u) << "only capture's input is reached from a flip-flop";
+  EXPECT_EQ(r.endpoints[0].pin, "capture/D");
+  EXPECT_GE(r.endpoints[0].period_ns, 0.25);
+  EXPECT_LE(r.endpoints[0].period_ns, 0.50);
+  EXPECT_EQ(r.worst_from, "launch");
+  EXPECT_EQ(r.worst_to, "capture");
+}
+
+TEST_F(Sta, EachInverterAddsItsLibertyDelay) {
+  const double t16 = time_chain(16, false).endpoints.at(0).period_ns;
+  const double t64 = time_chain(64, false).endpoints.at(0).period_ns;
+  const double per_inverter = (t64 - t16) / 48;
+  EXPECT_GE(per_inverter, 0.030) << t16 << " ns with 16, " << t64 << " ns with 64";
+  EXPECT_LE(per_inverter, 0.060) << t16 << " ns with 16, " << t64 << " ns with 64";
+}
+
+TEST_F(Sta, APipelineRegisterHalvesThePath) {
+  const double whole = time_chain(64, false).endpoints.at(0).period_ns;
+  const double half = time_chain(32, false).endpoints.at(0).period_ns;
+  const cdsim::StaReport cut = time_chain(64, true);
+  ASSERT_EQ(cut.endpoints.size(), 2u) << "the pipeline register and capture";
+  EXPECT_NEAR(cut.endpoints[0].period_ns, half, 0.05);
+  EXPECT_LT(cut.endpoints[0].period_ns, whole - 32 * 0.030);
+}
+
+TEST_F(Sta, APathCountsInTheBlockThatHoldsItsEnd) {
+  const cdsim::StaReport r = time_chain(8, false, "column_walker");
+  ASSERT_EQ(r.endpoints.size(), 1u);
+  EXPECT_EQ(r.endpoints[0].pin, "u_sub/capture/D");
+  EXPECT_EQ(r.instance_module.at("u_sub"), "column_walker");
+  EXPECT_EQ(cdsim::area_detail::block_of_pin(r.instance_module, r.endpoints[0].pin), "column walker");
+  EXPECT_EQ(cdsim::area_detail::block_of_pin(r.instance_module, "capture/D"), "control");
+}
+
+TEST_F(Sta, AnUnknownCellIsAnErrorNotABlackBox) {
+  cdsim::write_file_atomic(dir_ / "bad.v", "module chain(clk_i);\n  input clk_i;\n  NOSUCHCELL u (.A(clk_i));\nendmodule\n");
+  try {
+    cdsim::time_netlist({dir_ / "bad.v"}, "chain", kLiberty, "clk_i", dir_);
+    FAIL() << "timed a netlist of an unknown cell";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("sta.log"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("NOSUCHCELL"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
