@@ -53,6 +53,7 @@ struct AreaReport {
   double fmax_mhz = 0;
   std::string critical_path_from, critical_path_to;  // its start and end points
   std::string timing_report_path;                    // OpenSTA's report of that path
+  double table_path_ns = -1;  // the worst path into the scanline table (its timing model); -1: none
 };
 
 struct AreaOptions {
