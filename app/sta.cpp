@@ -11,6 +11,7 @@
 
 #include "cache_files.hpp"
 #include "child_process.hpp"
+#include "interrupt.hpp"
 #include "common.hpp"
 
 namespace cdsim {
@@ -103,7 +104,14 @@ StaReport time_netlist(const std::vector<fs::path>& netlists, const std::string&
   const auto started = std::chrono::steady_clock::now();
   std::error_code ec;
   fs::remove(log, ec);
-  const int status = run_child({"sta", "-no_splash", "-exit", script.string()}, log);
+  int status = -1;
+  try {
+    status = run_child({"sta", "-no_splash", "-exit", script.string()}, log);
+  } catch (const Interrupted&) {
+    throw;
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(fmt::format("{} (OpenSTA: Debian's opensta, which scripts/setup installs)", e.what()));
+  }
   if (!(WIFEXITED(status) && WEXITSTATUS(status) == 0))
     throw std::runtime_error(fmt::format("OpenSTA failed timing {} ({}; {})", netlist.string(),
                                          describe_status(status), log.string()));
