@@ -37,6 +37,10 @@ struct Candidate {
   std::string table;         // "sram", "flops" or "" (no table)
   double total_area_um2 = 0;  // logic + the cheaper table
   std::string rtl_verified = "not run";  // "yes", "no", "not run", "no RTL"
+  double min_px_per_clk = 0;    // the slowest scene's
+  std::string slowest_scene;
+  bool meets_rate = true;       // min_px_per_clk >= --min-rate
+  bool meets_clock = true;      // f_max >= --clock-mhz (known once synthesised)
 };
 
 int64_t total(const std::vector<DesignResult>& results, int64_t DesignResult::*field) {
@@ -94,6 +98,15 @@ CLI::App* add_choose_command(CLI::App& app, ChooseOptions& options) {
                   "parallel setup engine's with an unbanded table (a --set setup_multipliers stays)")
       ->check(cli::number_in(1.0, 1000.0))
       ->capture_default_str();
+  cmd->add_option("--min-rate", options.min_rate,
+                  "px/clk every scene must reach (0: none); a smaller setup engine or table is taken only while "
+                  "it keeps the rate")
+      ->check(cli::number_in(0.0, 1000.0))
+      ->capture_default_str();
+  cmd->add_option("--clock-mhz", options.clock_mhz,
+                  "the clock the synthesised unit must reach: f_max by OpenSTA (0: none)")
+      ->check(cli::number_in(0.0, 100000.0))
+      ->capture_default_str();
   cmd->add_option("--json", options.json_path, "also write the ranking as JSON to this file");
   cmd->add_flag("!--no-verify", options.verify, "do not regress the winner on the RTL");
   cmd->add_option("--verify-random", options.verify_random,
@@ -135,8 +148,10 @@ int run_choose_command(const ChooseOptions& options) {
   const bool user_sets_setup = std::any_of(options.settings.begin(), options.settings.end(), [](const std::string& s) {
     return s.rfind("setup_multipliers=", 0) == 0;
   });
-  fmt::print("choose: the cheapest design with {} {} error <= {} on every scene\n", options.statistic,
-             options.metric, options.max_error);
+  fmt::print("choose: the cheapest design with {} {} error <= {} on every scene{}{}\n", options.statistic,
+             options.metric, options.max_error,
+             options.min_rate > 0 ? fmt::format(", {:g} px/clk or more on every scene", options.min_rate) : "",
+             options.clock_mhz > 0 ? fmt::format(", f_max {:g} MHz or more", options.clock_mhz) : "");
   for (const PreparedScene& s : scenes)
     fmt::print("scene: {} ({} triangles, {}x{}; {})\n", s.scene.name, s.scene.triangles.size(),
                s.scene.width, s.scene.height, s.scene.description);
@@ -159,13 +174,21 @@ int run_choose_command(const ChooseOptions& options) {
     // One budget for both: the cycles of the fully parallel setup engine (or
     // the user's) and the unbanded table, times --max-slowdown.
     c.unbanded_cycles = total(sizing.results, &DesignResult::cycles);
-    if (!user_sets_setup) shrink_setup(d, scene_list, target, options.max_slowdown, c.unbanded_cycles, sizing);
-    shrink_table(d, scene_list, target, options.max_slowdown, c.unbanded_cycles, sizing);
+    if (!user_sets_setup)
+      shrink_setup(d, scene_list, target, options.max_slowdown, c.unbanded_cycles, sizing, options.min_rate);
+    shrink_table(d, scene_list, target, options.max_slowdown, c.unbanded_cycles, sizing, options.min_rate);
     c.meets = sizing.reachable && sizing.error <= target.max_error;
     c.widths = sizing.widths;
     c.error = sizing.error;
     c.cycles = total(sizing.results, &DesignResult::cycles);
     c.pixels = total(sizing.results, &DesignResult::pixels);
+    c.min_px_per_clk = std::numeric_limits<double>::infinity();
+    for (size_t i = 0; i < sizing.results.size(); ++i)
+      if (sizing.results[i].pixels_per_clock() < c.min_px_per_clk) {
+        c.min_px_per_clk = sizing.results[i].pixels_per_clock();
+        c.slowest_scene = scenes[i].scene.name;
+      }
+    c.meets_rate = c.min_px_per_clk >= options.min_rate;
     seconds[k] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     evaluations[k] = sizing.evaluations;
   }, ProgressShown::Always);
@@ -177,17 +200,19 @@ int run_choose_command(const ChooseOptions& options) {
   AreaOptions area_options;
   area_options.cache_dir = options.area_cache;
   std::vector<AreaJob> jobs;
+  // A design below the rate is not synthesised: no area makes it fast enough.
   for (const Candidate& c : candidates)
-    if (c.meets && has_rtl(c.design)) jobs.push_back({c.design, c.widths});
+    if (c.meets && c.meets_rate && has_rtl(c.design)) jobs.push_back({c.design, c.widths});
   const std::vector<AreaReport> areas = synthesise_areas(jobs, area_options, options.jobs);
   for (size_t i = 0, a = 0; i < candidates.size(); ++i) {
     Candidate& c = candidates[i];
-    if (!c.meets) continue;
+    if (!c.meets || !c.meets_rate) continue;
     if (!has_rtl(c.design)) {
       c.rtl_verified = "no RTL";
       continue;
     }
     c.area = areas[a++];
+    c.meets_clock = c.area->fmax_mhz >= options.clock_mhz;
     c.total_area_um2 = c.area->logic_area_um2;
     if (c.area->sram_bits > 0) {
       const bool flops = c.area->flop_table_area_um2 < c.area->sram_area_um2;
@@ -195,9 +220,12 @@ int run_choose_command(const ChooseOptions& options) {
       c.total_area_um2 += flops ? c.area->flop_table_area_um2 : c.area->sram_area_um2;
     }
   }
-  // Ranked: designs that meet the target with an area, by area then cycles;
-  // then those without RTL; then those that cannot meet it.
-  const auto group = [](const Candidate& c) { return !c.meets ? 2 : c.area ? 0 : 1; };
+  // Ranked: designs that meet every target with an area, by area then
+  // cycles; then those without RTL; then those that meet the error target
+  // but not the rate or the clock; then those that cannot meet the error.
+  const auto group = [](const Candidate& c) {
+    return !c.meets ? 3 : !c.meets_rate || !c.meets_clock ? 2 : c.area ? 0 : 1;
+  };
   std::stable_sort(candidates.begin(), candidates.end(), [&](const Candidate& a, const Candidate& b) {
     if (group(a) != group(b)) return group(a) < group(b);
     if (group(a) == 0 && a.total_area_um2 != b.total_area_um2) return a.total_area_um2 < b.total_area_um2;
@@ -236,14 +264,18 @@ int run_choose_command(const ChooseOptions& options) {
                  "not reachable: the error at the widest widths");
       continue;
     }
-    const std::string area = c.area ? fmt::format("{:.0f}", c.total_area_um2) : "no RTL";
+    const std::string area = c.area ? fmt::format("{:.0f}", c.total_area_um2) : c.meets_rate ? "no RTL" : "-";
     const std::string logic = c.area ? fmt::format("{:.0f}", c.area->logic_area_um2) : "-";
     const std::string fmax = timed(c) ? fmt::format("{:.1f}", c.area->fmax_mhz) : "-";
     const std::string rate = timed(c) ? fmt::format("{:.1f}", px_per_clk(c) * c.area->fmax_mhz) : "-";
+    const std::string meets = !c.meets_rate ? "rate" : !c.meets_clock ? "clock" : "yes";
+    const std::string why =
+        !c.meets_rate ? fmt::format("too slow: {:.3f} px/clk on {} < {:g}", c.min_px_per_clk, c.slowest_scene, options.min_rate)
+        : !c.meets_clock ? fmt::format("too slow: f_max {:.1f} MHz < {:g}; {}", c.area->fmax_mhz, options.clock_mhz, sized_widths(c))
+                         : sized_widths(c);
     fmt::print("{:<4} {:<17} {:<5} {:>13} {:>13} {:<6} {:>12} {:>9.3f} {:>7.3f} {:>6} {:>7} {:>10.4g}  {}\n", place,
-               c.design.name, "yes", area, logic, c.table.empty() ? "none" : c.table, c.cycles,
-               c.pixels ? double(c.cycles) / double(c.pixels) : 0.0, px_per_clk(c), fmax, rate, c.error,
-               sized_widths(c));
+               c.design.name, meets, area, logic, c.table.empty() ? "none" : c.table, c.cycles,
+               c.pixels ? double(c.cycles) / double(c.pixels) : 0.0, px_per_clk(c), fmax, rate, c.error, why);
   }
   fmt::print("(px/clk over all the scenes; f_max in MHz, OpenSTA on the synthesised netlist; Mpx/s = px/clk x f_max; "
              "docs/area.md)\n");
@@ -252,12 +284,13 @@ int run_choose_command(const ChooseOptions& options) {
                candidates.front().total_area_um2, candidates.front().cycles,
                candidates.front().rtl_verified);
   else
-    fmt::print("\nno design with RTL meets the target\n");
+    fmt::print("\nno design with RTL meets the target{}\n", options.min_rate > 0 || options.clock_mhz > 0 ? "s" : "");
 
   if (!options.json_path.empty()) {
     nlohmann::json json;
     json["target"] = {{"max_error", options.max_error}, {"metric", options.metric},
-                      {"statistic", options.statistic}, {"max_slowdown", options.max_slowdown}};
+                      {"statistic", options.statistic}, {"max_slowdown", options.max_slowdown},
+                      {"min_rate", options.min_rate}, {"clock_mhz", options.clock_mhz}};
     json["scenes"] = nlohmann::json::array();
     for (const PreparedScene& s : scenes)
       json["scenes"].push_back({{"name", s.scene.name}, {"triangles", s.scene.triangles.size()},
@@ -266,7 +299,8 @@ int run_choose_command(const ChooseOptions& options) {
     json["ranking"] = nlohmann::json::array();
     for (const Candidate& c : candidates) {
       nlohmann::json row = {{"design", c.design.name},
-                            {"meets", c.meets},
+                            {"meets", c.meets && c.meets_rate && c.meets_clock},
+                            {"meets_error", c.meets},
                             {"total_area_um2", c.area ? nlohmann::json(c.total_area_um2) : nlohmann::json()},
                             {"cycles", c.cycles},
                             {"pixels", c.pixels},
@@ -278,6 +312,12 @@ int run_choose_command(const ChooseOptions& options) {
                             {"mpix_per_s", timed(c) ? nlohmann::json(px_per_clk(c) * c.area->fmax_mhz)
                                                     : nlohmann::json()}};
       row["rtl_check"] = c.rtl_verified;
+      // Rate and clock are judged only for designs that meet the error; the
+      // clock only for those synthesised (a design below the rate is not).
+      row["min_px_per_clk"] = c.meets ? nlohmann::json(c.min_px_per_clk) : nlohmann::json();
+      row["slowest_scene"] = c.meets ? nlohmann::json(c.slowest_scene) : nlohmann::json();
+      row["meets_rate"] = c.meets ? nlohmann::json(c.meets_rate) : nlohmann::json();
+      row["meets_clock"] = c.area ? nlohmann::json(c.meets_clock) : nlohmann::json();
       if (c.area) {
         row["area"] = area_summary_json(*c.area, px_per_clk(c));
         row["table"] = c.table.empty() ? nlohmann::json() : nlohmann::json(c.table);

@@ -153,23 +153,25 @@ Sizing size_design(const Design& design, const std::vector<const PreparedScene*>
 namespace {
 
 // Runs the scenes at `trial`; takes it into `sizing` when every scene meets the
-// target, none raises a flag on more triangles than at the widest widths, and
-// the cycles stay within max_slowdown times reference_cycles.
+// target, none raises a flag on more triangles than at the widest widths, the
+// cycles stay within max_slowdown times reference_cycles, and every scene runs
+// at min_rate px/clk or more.
 bool take_if_within(const Design& design, const std::vector<const PreparedScene*>& scenes,
                     const ErrorTarget& target, double max_slowdown, int64_t reference_cycles,
-                    const Widths& trial, Sizing& sizing) {
+                    const Widths& trial, Sizing& sizing, double min_rate) {
   std::vector<DesignResult> results;
   double error = 0;
   int64_t cycles = 0;
-  bool flagged = false;
+  bool flagged = false, slow = false;
   for (size_t i = 0; i < scenes.size(); ++i) {
     ++sizing.evaluations;
     results.push_back(evaluate(*scenes[i], design, trial));
     error = std::max(error, target_measure(results.back(), target));
     cycles += results.back().cycles;
     flagged = flagged || saturates_more(sizing.widest_flags[i], results.back());
+    slow = slow || results.back().pixels_per_clock() < min_rate;
   }
-  if (error > target.max_error || flagged || double(cycles) > max_slowdown * double(reference_cycles))
+  if (error > target.max_error || flagged || slow || double(cycles) > max_slowdown * double(reference_cycles))
     return false;
   sizing.widths = trial;
   sizing.results = std::move(results);
@@ -182,18 +184,20 @@ bool take_if_within(const Design& design, const std::vector<const PreparedScene*
 std::vector<int> setup_multiplier_choices() { return {1, 2, 4, 8}; }
 
 void shrink_setup(const Design& design, const std::vector<const PreparedScene*>& scenes,
-                  const ErrorTarget& target, double max_slowdown, int64_t reference_cycles, Sizing& sizing) {
+                  const ErrorTarget& target, double max_slowdown, int64_t reference_cycles, Sizing& sizing,
+                  double min_rate) {
   if (!sizing.reachable || sizing.widths.setup_multipliers != 0) return;
   for (const int m : setup_multiplier_choices()) {
     throw_if_interrupted();
     Widths trial = sizing.widths;
     trial.setup_multipliers = m;
-    if (take_if_within(design, scenes, target, max_slowdown, reference_cycles, trial, sizing)) return;
+    if (take_if_within(design, scenes, target, max_slowdown, reference_cycles, trial, sizing, min_rate)) return;
   }
 }
 
 void shrink_table(const Design& design, const std::vector<const PreparedScene*>& scenes,
-                  const ErrorTarget& target, double max_slowdown, int64_t reference_cycles, Sizing& sizing) {
+                  const ErrorTarget& target, double max_slowdown, int64_t reference_cycles, Sizing& sizing,
+                  double min_rate) {
   if (!sizing.reachable || design.kind != Design::Kind::ConstantDepth) return;
   const int minimum = info("table_depth").min_value;
   for (int depth = sizing.widths.table_depth / 2; depth >= minimum; depth /= 2) {
@@ -201,7 +205,7 @@ void shrink_table(const Design& design, const std::vector<const PreparedScene*>&
     Widths trial = sizing.widths;
     trial.table_depth = depth;
     // A smaller table only bands more.
-    if (!take_if_within(design, scenes, target, max_slowdown, reference_cycles, trial, sizing)) break;
+    if (!take_if_within(design, scenes, target, max_slowdown, reference_cycles, trial, sizing, min_rate)) break;
   }
 }
 

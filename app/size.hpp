@@ -64,18 +64,22 @@ std::vector<int> setup_multiplier_choices();
 // the first of setup_multiplier_choices() at which every scene still meets the
 // target, raises no saturation flag on more triangles than at the widest
 // widths, and the scenes' cycles stay within max_slowdown times
-// reference_cycles (a shared engine sets a triangle up in more cycles). A
-// setup_multipliers the sizing starts from other than 0 (the user's) stays.
+// reference_cycles (a shared engine sets a triangle up in more cycles), and
+// every scene at min_rate px/clk or more. A setup_multipliers the sizing
+// starts from other than 0 (the user's) stays.
 void shrink_setup(const Design& design, const std::vector<const PreparedScene*>& scenes,
-                  const ErrorTarget& target, double max_slowdown, int64_t reference_cycles, Sizing& sizing);
+                  const ErrorTarget& target, double max_slowdown, int64_t reference_cycles, Sizing& sizing,
+                  double min_rate = 0);
 
 // Halves a reachable table design's table depth while every scene still meets
 // the target and raises no saturation flag on more triangles than at the
 // widest widths, and the scenes' cycles stay within max_slowdown times
-// reference_cycles (a smaller table bands and refills more). Updates the
-// sizing's widths, results, error and evaluations.
+// reference_cycles (a smaller table bands and refills more), every scene at
+// min_rate px/clk or more. Updates the sizing's widths, results, error and
+// evaluations.
 void shrink_table(const Design& design, const std::vector<const PreparedScene*>& scenes,
-                  const ErrorTarget& target, double max_slowdown, int64_t reference_cycles, Sizing& sizing);
+                  const ErrorTarget& target, double max_slowdown, int64_t reference_cycles, Sizing& sizing,
+                  double min_rate = 0);
 
 CLI::App* add_size_command(CLI::App& app, SizeOptions& options);
 int run_size_command(const SizeOptions& options);

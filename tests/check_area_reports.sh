@@ -35,6 +35,16 @@ winner=$(/usr/bin/python3 -c 'import json, sys; print(json.load(open(sys.argv[1]
   "$work/choose.json")
 "$cdsim" choose "$scene" "$(dirname "$0")/data/good.tri" --design "$winner" "${args[@]}" --metric footprint \
   --max-error 100 --verify-random 20 --json "$work/choose2.json" > "$work/choose2.txt"
+# The rate and clock targets. No design reaches 5 px/clk: both are refused,
+# and neither is synthesised (an empty cache stays empty). A clock between the
+# two designs' f_max refuses the slower one (its synthesis is cached).
+"$cdsim" choose "$scene" --design affine,divide "${args[@]}" --metric footprint --max-error 100 --min-rate 5 \
+  --no-verify --area-cache "$work/empty_cache" --json "$work/choose_rate.json" > "$work/choose_rate.txt"
+clock=$(/usr/bin/python3 -c 'import json, sys; r = json.load(open(sys.argv[1]))["ranking"]
+print(round(sum(x["fmax_mhz"] for x in r) / len(r), 2))' "$work/choose.json")
+"$cdsim" choose "$scene" --design affine,divide "${args[@]}" --metric footprint --max-error 100 \
+  --clock-mhz "$clock" --no-verify --area-cache "$work/cache/cdsim/area" --json "$work/choose_clock.json" \
+  > "$work/choose_clock.txt"
 
 /usr/bin/python3 - "$work" "$cdsim" "$scene" <<'PY'
 import csv, json, subprocess, sys
@@ -125,6 +135,35 @@ expect(len(two["scenes"]) == 2 and two["ranking"][0]["rtl_verified"] is True,
 text = open(f"{work}/choose2.txt").read()
 expect("source: scene" in text and "source: then scene" in text and "0 mismatches" in text,
        "choose on two scenes: one RTL run holds both scenes")
+
+import pathlib
+rate = json.load(open(f"{work}/choose_rate.json"))
+expect(rate["target"]["min_rate"] == 5, "choose --min-rate: the target is in the JSON")
+for r in rate["ranking"]:
+    expect(r["meets_error"] and r["meets_rate"] is False and r["meets"] is False,
+           f"choose --min-rate 5: {r['design']} meets the error but is refused for its rate")
+    expect(close(r["min_px_per_clk"], r["pixels"] / r["cycles"]) and r["min_px_per_clk"] < 5,
+           f"choose --min-rate 5: {r['design']} listed with the rate it reaches ({r['min_px_per_clk']:.3f} px/clk)")
+    expect(r["total_area_um2"] is None, f"choose --min-rate 5: {r['design']} not synthesised")
+empty = pathlib.Path(f"{work}/empty_cache")
+expect(not empty.exists() or not any(empty.rglob("result.json")), "choose --min-rate 5: no synthesis run")
+text = open(f"{work}/choose_rate.txt").read()
+expect("too slow:" in text and "no design with RTL meets the targets" in text,
+       "choose --min-rate 5: the table says why, and that nothing wins")
+
+clocked = json.load(open(f"{work}/choose_clock.json"))
+target = clocked["target"]["clock_mhz"]
+by_name = {r["design"]: r for r in clocked["ranking"]}
+fast = max(ranking, key=lambda r: r["fmax_mhz"])["design"]
+slow = min(ranking, key=lambda r: r["fmax_mhz"])["design"]
+expect(fast != slow and by_name[slow]["fmax_mhz"] < target < by_name[fast]["fmax_mhz"],
+       f"choose --clock-mhz {target:.1f}: between the two designs' f_max")
+expect(by_name[slow]["meets_clock"] is False and by_name[slow]["meets"] is False and by_name[slow]["meets_rate"],
+       f"choose --clock-mhz: {slow} refused for its clock ({by_name[slow]['fmax_mhz']:.1f} MHz)")
+expect(by_name[fast]["meets_clock"] is True and clocked["ranking"][0]["design"] == fast,
+       f"choose --clock-mhz: {fast} meets the clock and wins")
+text = open(f"{work}/choose_clock.txt").read()
+expect(f"winner: {fast}" in text and "too slow: f_max" in text, "choose --clock-mhz: the table says why")
 sys.exit(1 if failures else 0)
 PY
 echo PASS
