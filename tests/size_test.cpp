@@ -134,5 +134,40 @@ TEST(Size, ShrinkSetupTakesTheFewestMultipliersWithinBudget) {
   EXPECT_EQ(user.widths.setup_multipliers, 4) << "the user's setup_multipliers stays";
 }
 
+// A rate target stops the shrinking where the cycle budget would not: every
+// choice before the one taken runs the scene below the rate, and the one
+// taken (or M = 0 when none) runs it at the rate or more.
+TEST(Size, ShrinkSetupKeepsTheRate) {
+  const Widths defaults;
+  const PreparedScene scene = prepare(load_scene(CDSIM_TEST_DATA "/small_scene.tri"), defaults);
+  const Design& design = find_design("cd-linear");
+  const ErrorTarget target{0.5, "footprint", "max"};
+  const Sizing sized = size_design(design, {&scene}, defaults, target);
+  ASSERT_TRUE(sized.reachable);
+  const DesignResult parallel = evaluate(scene, design, sized.widths);
+  const auto rate_at = [&](int m) {
+    Widths trial = sized.widths;
+    trial.setup_multipliers = m;
+    return evaluate(scene, design, trial).pixels_per_clock();
+  };
+  const std::vector<int> choices = setup_multiplier_choices();
+  // A rate between M = 1's and the fastest shared engine's, one above every
+  // engine's (M = 0 stays), and none.
+  const double between = (rate_at(choices.front()) + rate_at(choices.back())) / 2;
+  for (const double min_rate : {between, 2 * parallel.pixels_per_clock(), 0.0}) {
+    Sizing shrunk = sized;
+    shrink_setup(design, {&scene}, target, 100.0, parallel.cycles, shrunk, min_rate);
+    const int m = shrunk.widths.setup_multipliers;
+    if (m != 0) {
+      EXPECT_GE(rate_at(m), min_rate) << "M = " << m;
+    }
+    for (const int cheaper : choices) {
+      if (cheaper == m) break;
+      EXPECT_LT(rate_at(cheaper), min_rate) << "M = " << cheaper << " kept " << min_rate << " px/clk too";
+    }
+  }
+  ASSERT_LT(rate_at(choices.front()), between) << "the scene must separate M = 1 from the fastest shared engine";
+}
+
 }  // namespace
 }  // namespace cdsim
