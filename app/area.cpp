@@ -749,6 +749,7 @@ nlohmann::json area_json(const AreaReport& r, const AreaOptions& options) {
           {"critical_path_ns", r.critical_path_ns < 0 ? nlohmann::json(nullptr) : nlohmann::json(r.critical_path_ns)},
           {"table_critical_path_ns", r.table_path_ns < 0 ? nlohmann::json(nullptr) : nlohmann::json(r.table_path_ns)},
           {"fmax_mhz", r.critical_path_ns < 0 ? nlohmann::json(nullptr) : nlohmann::json(r.fmax_mhz)},
+          {"critical_block", r.critical_path_ns < 0 ? nlohmann::json(nullptr) : nlohmann::json(critical_block(r))},
           {"critical_path", r.critical_path_ns < 0 ? nlohmann::json(nullptr)
                                                    : nlohmann::json{{"from", r.critical_path_from},
                                                                     {"to", r.critical_path_to},
@@ -762,6 +763,18 @@ nlohmann::json area_json(const AreaReport& r, const AreaOptions& options) {
 
 double nand2_area_um2(const AreaOptions& options) {
   return liberty_cell_area(options.liberty, "NAND2X1");
+}
+
+std::string critical_block(const AreaReport& r) {
+  if (r.critical_path_ns <= 0) return "";
+  std::string block;
+  double longest = -1;
+  for (const BlockArea& b : r.blocks)
+    if (b.critical_path_ns > longest) {
+      longest = b.critical_path_ns;
+      block = b.name;
+    }
+  return r.table_path_ns > longest ? "scanline table" : block;
 }
 
 nlohmann::json area_summary_json(const AreaReport& r, double px_per_clk) {
@@ -778,6 +791,7 @@ nlohmann::json area_summary_json(const AreaReport& r, double px_per_clk) {
   const bool timed = r.critical_path_ns > 0;
   j["critical_path_ns"] = timed ? nlohmann::json(r.critical_path_ns) : nlohmann::json(nullptr);
   j["fmax_mhz"] = timed ? nlohmann::json(r.fmax_mhz) : nlohmann::json(nullptr);
+  j["critical_block"] = timed ? nlohmann::json(critical_block(r)) : nlohmann::json(nullptr);
   if (px_per_clk >= 0) {
     const double rate = px_per_clk * r.fmax_mhz;
     j["px_per_clk"] = px_per_clk;
@@ -905,9 +919,10 @@ int run_area_command(const AreaOptions& options) {
              " path ns: the shortest clock period that the worst path ending at the block's flip-flops meets, by OpenSTA)\n");
   fmt::print("{:<20} {:>14.0f}\n", "logic total", r.logic_area_um2);
   if (r.critical_path_ns > 0) {
-    fmt::print("\nclock: critical path {:.2f} ns, f_max {:.1f} MHz (OpenSTA on the mapped netlist: ideal clock, no wires; "
-               "docs/area.md)\n  from {}\n  to   {}\n  report {}\n",
-               r.critical_path_ns, r.fmax_mhz, r.critical_path_from, r.critical_path_to, r.timing_report_path);
+    fmt::print("\nclock: critical path {:.2f} ns in the {}, f_max {:.1f} MHz (OpenSTA on the mapped netlist: ideal clock, "
+               "no wires; docs/area.md)\n  from {}\n  to   {}\n  report {}\n",
+               r.critical_path_ns, critical_block(r), r.fmax_mhz, r.critical_path_from, r.critical_path_to,
+               r.timing_report_path);
     if (options.clock_mhz > 0)
       fmt::print("  mapped for {} MHz ({:.2f} ns): {} (slack {:+.2f} ns)\n", options.clock_mhz, 1000 / options.clock_mhz,
                  r.fmax_mhz >= options.clock_mhz ? "met" : "NOT met", 1000 / options.clock_mhz - r.critical_path_ns);

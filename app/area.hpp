@@ -96,6 +96,10 @@ std::vector<AreaReport> synthesise_areas(const std::vector<AreaJob>& list,
 // logic um^2, NAND2-eq, SRAM bits, SRAM um^2, total um^2, the critical path
 // and f_max (null for estimates); given the design's px/clk on the scene
 // (>= 0), also px_per_clk, mpix_per_s (px/clk x f_max) and um2_per_mpix_per_s.
+// The block whose worst path sets the unit's clock: the block of the longest
+// block path, or "scanline table" when the paths into the table are longer;
+// "" when the report is not timed.
+std::string critical_block(const AreaReport& report);
 nlohmann::json area_summary_json(const AreaReport& report, double px_per_clk = -1);
 double nand2_area_um2(const AreaOptions& options);
 // The readable table of those keys, one line per report, with the rates when

@@ -271,7 +271,9 @@ int run_choose_command(const ChooseOptions& options) {
     const std::string meets = !c.meets_rate ? "rate" : !c.meets_clock ? "clock" : "yes";
     const std::string why =
         !c.meets_rate ? fmt::format("too slow: {:.3f} px/clk on {} < {:g}", c.min_px_per_clk, c.slowest_scene, options.min_rate)
-        : !c.meets_clock ? fmt::format("too slow: f_max {:.1f} MHz < {:g}; {}", c.area->fmax_mhz, options.clock_mhz, sized_widths(c))
+        : !c.meets_clock ? fmt::format("too slow: f_max {:.1f} MHz < {:g} (the {}'s {:.2f} ns); {}",
+                                       c.area->fmax_mhz, options.clock_mhz, critical_block(*c.area),
+                                       c.area->critical_path_ns, sized_widths(c))
                          : sized_widths(c);
     fmt::print("{:<4} {:<17} {:<5} {:>13} {:>13} {:<6} {:>12} {:>9.3f} {:>7.3f} {:>6} {:>7} {:>10.4g}  {}\n", place,
                c.design.name, meets, area, logic, c.table.empty() ? "none" : c.table, c.cycles,

@@ -68,6 +68,13 @@ for row in run["designs"]:
     # The rates: f_max from cdsim area's timing, px/clk from the run itself.
     expect(area["fmax_mhz"] > 0 and close(area["fmax_mhz"], 1000 / area["critical_path_ns"]),
            f"cdsim area: {d}'s f_max is 1000 / its critical path ({area['fmax_mhz']:.1f} MHz)")
+    # The critical block: the one whose worst path is the unit's, or the table's inputs.
+    paths = {b["name"]: b["critical_path_ns"] for b in area["blocks"] if b["critical_path_ns"] is not None}
+    if (area["table_critical_path_ns"] or 0) > max(paths.values()):
+        paths["scanline table"] = area["table_critical_path_ns"]
+    worst = max(paths, key=paths.get)
+    expect(area["critical_block"] == worst and close(paths[worst], area["critical_path_ns"]),
+           f"cdsim area: {d}'s critical block is {worst}, whose path is the unit's ({area['critical_block']})")
     expect(close(row["area"]["px_per_clk"], row["pixels"] / row["cycles"]),
            f"run --area: {d}'s px/clk is its pixels over its cycles")
     expect(close(row["area"]["mpix_per_s"], row["pixels"] / row["cycles"] * area["fmax_mhz"]),
@@ -163,7 +170,9 @@ expect(by_name[slow]["meets_clock"] is False and by_name[slow]["meets"] is False
 expect(by_name[fast]["meets_clock"] is True and clocked["ranking"][0]["design"] == fast,
        f"choose --clock-mhz: {fast} meets the clock and wins")
 text = open(f"{work}/choose_clock.txt").read()
-expect(f"winner: {fast}" in text and "too slow: f_max" in text, "choose --clock-mhz: the table says why")
+expect(f"winner: {fast}" in text and "too slow: f_max" in text
+       and f"(the {by_name[slow]['area']['critical_block']}'s " in text,
+       "choose --clock-mhz: the table says why, and which block sets the clock")
 sys.exit(1 if failures else 0)
 PY
 echo PASS
