@@ -93,12 +93,21 @@ TEST(Size, ShrinkTableStopsAtTheLastDepthWithinBudget) {
 // budget and change nothing but the cycles (the arithmetic is the same), and
 // every cheaper choice, run here on its own, is over the budget; a user's
 // setup_multipliers stays.
-TEST(Size, ShrinkSetupTakesTheFewestMultipliersWithinBudget) {
-  const Widths defaults;
-  const PreparedScene scene = prepare(load_scene(CDSIM_TEST_DATA "/small_scene.tri"), defaults);
+// cd-linear sized for 0.5 footprints on the small scene, from the fully
+// parallel setup engine (not copied: sized was run on &scene).
+struct SmallSceneSizing {
+  PreparedScene scene = prepare(load_scene(CDSIM_TEST_DATA "/small_scene.tri"), Widths{});
   const Design& design = find_design("cd-linear");
-  const ErrorTarget target{0.5, "footprint", "max"};
-  const Sizing sized = size_design(design, {&scene}, defaults, target);
+  ErrorTarget target{0.5, "footprint", "max"};
+  Sizing sized = size_design(design, {&scene}, Widths{}, target);
+};
+
+TEST(Size, ShrinkSetupTakesTheFewestMultipliersWithinBudget) {
+  const SmallSceneSizing sizing;
+  const PreparedScene& scene = sizing.scene;
+  const Design& design = sizing.design;
+  const ErrorTarget& target = sizing.target;
+  const Sizing& sized = sizing.sized;
   ASSERT_TRUE(sized.reachable);
   ASSERT_EQ(sized.widths.setup_multipliers, 0);
   const DesignResult at_sized = evaluate(scene, design, sized.widths);
@@ -138,11 +147,11 @@ TEST(Size, ShrinkSetupTakesTheFewestMultipliersWithinBudget) {
 // choice before the one taken runs the scene below the rate, and the one
 // taken (or M = 0 when none) runs it at the rate or more.
 TEST(Size, ShrinkSetupKeepsTheRate) {
-  const Widths defaults;
-  const PreparedScene scene = prepare(load_scene(CDSIM_TEST_DATA "/small_scene.tri"), defaults);
-  const Design& design = find_design("cd-linear");
-  const ErrorTarget target{0.5, "footprint", "max"};
-  const Sizing sized = size_design(design, {&scene}, defaults, target);
+  const SmallSceneSizing sizing;
+  const PreparedScene& scene = sizing.scene;
+  const Design& design = sizing.design;
+  const ErrorTarget& target = sizing.target;
+  const Sizing& sized = sizing.sized;
   ASSERT_TRUE(sized.reachable);
   const DesignResult parallel = evaluate(scene, design, sized.widths);
   const auto rate_at = [&](int m) {
