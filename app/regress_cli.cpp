@@ -70,6 +70,10 @@ CLI::App* add_regress_command(CLI::App& app, RegressOptions& options) {
                 "with --coverage: leave out the toggle points (line, branch and cover points "
                 "only), for a coverage build that builds and runs several times faster")
       ->needs(coverage);
+  cmd->add_flag("--whole-unit", options.whole_unit,
+                "run the unit with every design's hardware (built with cdsim), rather than one that "
+                "holds only the chosen designs' datapaths, verilated on first use into the RTL cache "
+                "as --set widths are (as cdsim area synthesises it; it simulates faster)");
   cmd->add_option("--only", options.only, "run only triangle N of the source, from 0 (to chase a mismatch)")
       ->check(cli::integer_in(0, std::numeric_limits<int64_t>::max()));
   return cmd;

@@ -97,6 +97,12 @@ std::vector<UnitParameter> unit_parameters(const std::vector<const Design*>& des
           {"HasKimPipe", kim_pipe}};
 }
 
+std::string unit_parameter_list(const std::vector<UnitParameter>& parameters) {
+  std::string list;
+  for (const UnitParameter& p : parameters) list += fmt::format("{}{}={}", list.empty() ? "" : " ", p.name, p.value);
+  return list;
+}
+
 const Design& find_design(const std::string& name) {
   for (const auto& d : all_designs())
     if (d.name == name) return d;

@@ -87,6 +87,8 @@ struct UnitParameter {
   int value;
 };
 std::vector<UnitParameter> unit_parameters(const std::vector<const Design*>& designs);
+// "MaxDensityLog2=0 HasCorrection=1 ...", as reports name a unit.
+std::string unit_parameter_list(const std::vector<UnitParameter>& parameters);
 
 // Sticky per-triangle flags; a fragment carries the subset raised by its own pixel.
 // Saturation is raised where a saturated value reaches an output: a table entry

@@ -298,9 +298,12 @@ module setup_fill #(
   // fraction bits, its product read with RecipBits + eps_frac + guard
   // fraction bits, to s2.eps_frac (round to nearest, saturate); its most
   // negative code is moved up by one, so that -eps fits as well, and flagged.
-  logic signed [EpsBits-1:0] eps, eps_rounded;
-  logic                      eps_saturated;
+  // eps and its flag are placed in the word here, in a generate block, so
+  // that a word without them never names their bits.
+  logic [WordBits-1:0] eps_part;
   if (HasPersp) begin : gen_eps
+    logic signed [EpsBits-1:0]          eps, eps_rounded;
+    logic                               eps_saturated;
     logic signed [OperandEpsBits-1:0]   operand_eps;
     logic signed [ProductEpsBits-1:0]   product_eps;
     logic signed [ProductShiftBits-1:0] shift_eps;
@@ -325,24 +328,23 @@ module setup_fill #(
         eps_saturated = 1'b1;
       end
     end
+    always_comb begin
+      eps_part = '0;
+      eps_part[`CD_WORD_EPS_LSB +: EpsBits] = eps;
+      eps_part[`CD_WORD_EPS_SATURATED_BIT] = eps_saturated;
+    end
   end else begin : gen_no_eps
-    assign eps = '0;
-    assign eps_rounded = '0;
-    assign eps_saturated = 1'b0;
+    assign eps_part = '0;
   end
 
   always_comb begin
-    write_entry_o = '0;
+    write_entry_o = eps_part;
     write_entry_o[`CD_WORD_TU_LSB +: TBits] = t_u;
     write_entry_o[`CD_WORD_TV_LSB +: TBits] = t_v;
     write_entry_o[`CD_WORD_SU_LSB +: SBits] = s_u;
     write_entry_o[`CD_WORD_SV_LSB +: SBits] = s_v;
     write_entry_o[`CD_WORD_SATURATED_BIT] = |entry_saturated || operand_t_saturated;
     write_entry_o[`CD_WORD_DEPTH_RANGE_BIT] = result_depth_out;
-    if (HasPersp) begin
-      write_entry_o[`CD_WORD_EPS_LSB +: EpsBits] = eps;
-      write_entry_o[`CD_WORD_EPS_SATURATED_BIT] = eps_saturated;
-    end
   end
   assign write_valid_o = result_valid && !hold_i;
   assign write_addr_o = result_addr;

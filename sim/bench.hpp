@@ -16,7 +16,7 @@
 #include <systemc.h>
 #include <verilated.h>
 #include <verilated_cov.h>
-#include <verilated_fst_sc.h>
+#include <verilated_fst_c.h>
 
 #include <chrono>
 #include <cstdint>
@@ -59,6 +59,7 @@ struct BenchOptions {
   // Per job: cycles without its record (counted from the last record) before a hang is reported
   // (regress.cpp, hang_cycle_limit: scaled by the model's cycles and the back-pressure).
   std::vector<int64_t> cycle_limits;
+  bool unit_has_table = true;       // the unit's HasTable (Scoreboard::set_unit_has_table)
   BenchSummary* summary = nullptr;  // filled at the end, if given
   // Called after each triangle's record with the triangles done (regress's
   // progress on stderr); not during the replay of a failing triangle.
@@ -73,69 +74,32 @@ inline uint64_t mix_seed(uint64_t seed, uint64_t index) {
   return z ^ (z >> 31);
 }
 
+// The bench as one SystemC thread that owns the Verilated model (Verilator's
+// C++ model, not its SystemC wrapper) and calls its eval itself: each clock is
+// a falling edge (inputs driven, eval), the sampling of the cycle's transfers,
+// then a rising edge (eval). No port crosses an sc_signal, so the kernel does
+// no per-cycle work: the thread yields to it every kYieldCycles clocks, which
+// is when simulated time advances and the interrupt watch can pause the run.
+// docs/rtl.md "The bench" has the profile before and after.
 template <class Dut>
 class Bench : public sc_core::sc_module {
  public:
   SC_HAS_PROCESS(Bench);
 
+  static constexpr int64_t kPeriodNs = 10;
+  static constexpr int64_t kYieldCycles = 1000;
+
   Bench(sc_core::sc_module_name name, const std::vector<Job>& jobs, Scoreboard& scoreboard,
         const BenchOptions& options)
-      : sc_module(name), clk("clk", 10, sc_core::SC_NS), dut("dut"), jobs_(jobs),
-        scoreboard_(scoreboard), options_(options) {
-    dut.clk_i(clk);
-    dut.rst_ni(rst_n);
-    dut.tri_valid_i(tri_valid);
-    dut.tri_ready_o(tri_ready);
-    dut.tri_x0_i(tri_x[0]); dut.tri_y0_i(tri_y[0]); dut.tri_q0_i(tri_q[0]);
-    dut.tri_u0_i(tri_u[0]); dut.tri_v0_i(tri_v[0]);
-    dut.tri_x1_i(tri_x[1]); dut.tri_y1_i(tri_y[1]); dut.tri_q1_i(tri_q[1]);
-    dut.tri_u1_i(tri_u[1]); dut.tri_v1_i(tri_v[1]);
-    dut.tri_x2_i(tri_x[2]); dut.tri_y2_i(tri_y[2]); dut.tri_q2_i(tri_q[2]);
-    dut.tri_u2_i(tri_u[2]); dut.tri_v2_i(tri_v[2]);
-    dut.viewport_width_i(viewport_width);
-    dut.viewport_height_i(viewport_height);
-    dut.kind_i(kind);
-    dut.segment_log2_i(segment_log2);
-    dut.density_log2_i(density_log2);
-    dut.correction_i(correction);
-    dut.persp_i(persp);
-    dut.quadratic_i(quadratic);
-    dut.fallback_i(fallback);
-    dut.kim_pipelined_i(kim_pipelined);
-    dut.frag_valid_o(frag_valid);
-    dut.frag_ready_i(frag_ready);
-    dut.frag_x_o(frag_x);
-    dut.frag_y_o(frag_y);
-    dut.frag_u_o(frag_u);
-    dut.frag_v_o(frag_v);
-    dut.frag_flags_o(frag_flags);
-    dut.rec_valid_o(rec_valid);
-    dut.rec_ready_i(rec_ready);
-    dut.rec_cycles_o(rec_cycles);
-    dut.rec_lines_o(rec_lines);
-    dut.rec_bands_o(rec_bands);
-    dut.rec_pixels_o(rec_pixels);
-    dut.rec_flags_o(rec_flags);
-    dut.obs_setup_valid_o(obs_setup_valid);
-    dut.obs_setup_bits_o(obs_setup_bits);
-    dut.obs_setup_g_o(obs_setup_g);
-    dut.obs_setup_box_o(obs_setup_box);
-    dut.obs_setup_lines_o(obs_setup_lines);
-    dut.obs_write_valid_o(obs_write_valid);
-    dut.obs_write_addr_o(obs_write_addr);
-    dut.obs_write_tu_o(obs_write_tu);
-    dut.obs_write_tv_o(obs_write_tv);
-    dut.obs_write_su_o(obs_write_su);
-    dut.obs_write_sv_o(obs_write_sv);
-    dut.obs_write_eps_o(obs_write_eps);
-    dut.obs_write_flags_o(obs_write_flags);
-    SC_METHOD(on_falling_edge);
-    sensitive << clk.negedge_event();
-    dont_initialize();
-    SC_METHOD(on_rising_edge);
-    sensitive << clk.posedge_event();
-    dont_initialize();
+      : sc_module(name), dut("dut"), jobs_(jobs), scoreboard_(scoreboard), options_(options) {
+    // Trace time in the model's time precision (10^prec s a tick).
+    ticks_per_ns_ = 1;
+    for (int p = dut.contextp()->timeprecision(); p < -9; ++p) ticks_per_ns_ *= 10;
+    SC_THREAD(run);
   }
+
+  // The waveform the clocks are dumped into while it is open.
+  void set_trace(VerilatedFstC* trace) { trace_ = trace; }
 
   // Replays one triangle alone from an idle unit (after a mismatch, with the
   // waveform on): the same values and back-pressure; its cycles are those of a
@@ -148,6 +112,7 @@ class Bench : public sc_core::sc_module {
     stopping_ = false;
     checking_ = true;
     scoreboard_.restart();
+    done_ = false;  // the thread waits for this in simulated time
   }
 
   bool failed() const { return failed_; }
@@ -160,17 +125,57 @@ class Bench : public sc_core::sc_module {
   int64_t total_stalls() const { return total_stalls_; }
   size_t triangles_done() const { return triangles_done_; }
 
-  sc_core::sc_clock clk;
   Dut dut;
 
  private:
+  // Runs clocks until the source is done and the unit empty (or a hang), then
+  // pauses the kernel: sc_start returns to run_bench. A replay resumes it.
+  void run() {
+    dut.clk_i = 1;  // as the clock starts: high, the first edge a falling one
+    dut.eval();
+    dump();
+    for (;;) {
+      int64_t since_yield = 0;
+      while (!done_) {
+        falling_edge();
+        dut.clk_i = 0;
+        dut.eval();
+        time_ += kPeriodNs / 2;
+        dump();
+        if (done_) break;  // a hang
+        rising_edge();
+        dut.clk_i = 1;
+        dut.eval();
+        time_ += kPeriodNs / 2;
+        dump();
+        if (++since_yield == kYieldCycles) {
+          since_yield = 0;
+          wait(sc_core::sc_time(double(kYieldCycles * kPeriodNs), sc_core::SC_NS));
+        }
+      }
+      sc_core::sc_pause();
+      while (done_) wait(sc_core::sc_time(double(kYieldCycles * kPeriodNs), sc_core::SC_NS));
+    }
+  }
+
+  void dump() {
+    if (trace_ && trace_->isOpen()) trace_->dump(static_cast<uint64_t>(time_ * ticks_per_ns_));
+  }
+
+  // An input port takes the low `bits` bits of the value (Verilator's C++
+  // model assumes the bits above a port's width are zero).
+  template <class Port>
+  static void drive(Port& port, uint64_t value, int bits) {
+    port = static_cast<Port>(bits >= 64 ? value : value & ((uint64_t{1} << bits) - 1));
+  }
+
   // Drives the inputs for the coming cycle.
-  void on_falling_edge() {
+  void falling_edge() {
     ++clock_cycles_;
     if (reset_cycles_ > 0) {
-      rst_n.write(false);
-      rec_ready.write(true);
-      if (--reset_cycles_ == 0) rst_n.write(true);
+      dut.rst_ni = 0;
+      dut.rec_ready_i = 1;
+      if (--reset_cycles_ == 0) dut.rst_ni = 1;
       return;
     }
     if (!in_flight_.empty() && ++busy_cycles_ > cycle_limit_) {
@@ -178,69 +183,78 @@ class Bench : public sc_core::sc_module {
       std::cout << fmt::format("HANG seed {} triangle {}: no record after {} cycles\n  triangle {}\n",
                                options_.seed, job.number, busy_cycles_, describe_job(job));
       hung_ = true;
-      sc_core::sc_pause();
+      done_ = true;
       return;
     }
     // Sink: the fragment offered this cycle (frag_valid depends on the unit's
     // state only) is refused with the probability of back-pressure.
     bool ready = true;
-    if (frag_valid.read() && options_.backpressure > 0)
+    if (dut.frag_valid_o && options_.backpressure > 0)
       ready = !(stall_dist_(stall_rng_) < options_.backpressure);
-    frag_ready.write(ready);
+    dut.frag_ready_i = ready;
     // Source: the next triangle, offered until taken.
     if (!presenting_ && !stopping_ && next_job_ < last_job_) {
       const Job& job = jobs_[next_job_];
-      for (size_t i = 0; i < 3; ++i) {
-        const UnitVertex& v = job.triangle.vertex[i];
-        tri_x[i].write(static_cast<uint32_t>(v.x));
-        tri_y[i].write(static_cast<uint32_t>(v.y));
-        tri_q[i].write(v.q_float);
-        tri_u[i].write(static_cast<uint32_t>(v.u));
-        tri_v[i].write(static_cast<uint32_t>(v.v));
-      }
-      viewport_width.write(static_cast<uint32_t>(job.viewport_width));
-      viewport_height.write(static_cast<uint32_t>(job.viewport_height));
+      const auto& v = job.triangle.vertex;
+      drive(dut.tri_x0_i, static_cast<uint32_t>(v[0].x), 32);
+      drive(dut.tri_y0_i, static_cast<uint32_t>(v[0].y), 32);
+      drive(dut.tri_q0_i, v[0].q_float, 32);
+      drive(dut.tri_u0_i, static_cast<uint32_t>(v[0].u), 32);
+      drive(dut.tri_v0_i, static_cast<uint32_t>(v[0].v), 32);
+      drive(dut.tri_x1_i, static_cast<uint32_t>(v[1].x), 32);
+      drive(dut.tri_y1_i, static_cast<uint32_t>(v[1].y), 32);
+      drive(dut.tri_q1_i, v[1].q_float, 32);
+      drive(dut.tri_u1_i, static_cast<uint32_t>(v[1].u), 32);
+      drive(dut.tri_v1_i, static_cast<uint32_t>(v[1].v), 32);
+      drive(dut.tri_x2_i, static_cast<uint32_t>(v[2].x), 32);
+      drive(dut.tri_y2_i, static_cast<uint32_t>(v[2].y), 32);
+      drive(dut.tri_q2_i, v[2].q_float, 32);
+      drive(dut.tri_u2_i, static_cast<uint32_t>(v[2].u), 32);
+      drive(dut.tri_v2_i, static_cast<uint32_t>(v[2].v), 32);
+      drive(dut.viewport_width_i, static_cast<uint32_t>(job.viewport_width), 16);
+      drive(dut.viewport_height_i, static_cast<uint32_t>(job.viewport_height), 16);
       const DesignSelect select = design_select(*job.design);
-      kind.write(static_cast<uint32_t>(select.kind));
-      segment_log2.write(static_cast<uint32_t>(select.segment_log2));
-      density_log2.write(static_cast<uint32_t>(select.density_log2));
-      correction.write(select.correction);
-      persp.write(select.persp);
-      quadratic.write(select.quadratic);
-      fallback.write(select.fallback);
-      kim_pipelined.write(select.kim_pipelined);
+      drive(dut.kind_i, static_cast<uint32_t>(select.kind), 2);
+      drive(dut.segment_log2_i, static_cast<uint32_t>(select.segment_log2), 3);
+      drive(dut.density_log2_i, static_cast<uint32_t>(select.density_log2), 2);
+      drive(dut.correction_i, select.correction, 1);
+      drive(dut.persp_i, select.persp, 1);
+      drive(dut.quadratic_i, select.quadratic, 1);
+      drive(dut.fallback_i, select.fallback, 1);
+      drive(dut.kim_pipelined_i, select.kim_pipelined, 1);
       presenting_ = true;
       presented_ = next_job_++;
     }
     if (stopping_) presenting_ = false;  // a failure: offer nothing more
-    tri_valid.write(presenting_);
+    dut.tri_valid_i = presenting_;
   }
 
-  // Samples the transfers of the cycle ending.
-  void on_rising_edge() {
+  // Samples the transfers of the cycle ending: the outputs as the inputs of
+  // the falling edge left them settled, before the rising edge's eval.
+  void rising_edge() {
     if (reset_cycles_ > 0 || hung_) return;
-    if (frag_valid.read()) {
-      if (!frag_ready.read()) {
+    if (dut.frag_valid_o) {
+      if (!dut.frag_ready_i) {
         ++stalls_;
       } else if (checking_) {
         RtlFragment f;
-        f.x = static_cast<int64_t>(frag_x.read());
-        f.y = static_cast<int64_t>(frag_y.read());
-        f.u = static_cast<int64_t>(frag_u.read());
-        f.v = static_cast<int64_t>(frag_v.read());
-        f.flags = frag_flags.read();
+        f.x = static_cast<int64_t>(dut.frag_x_o);
+        f.y = static_cast<int64_t>(dut.frag_y_o);
+        f.u = static_cast<int64_t>(dut.frag_u_o);
+        f.v = static_cast<int64_t>(dut.frag_v_o);
+        f.flags = dut.frag_flags_o;
         if (!scoreboard_.fragment(f)) fail();
       }
     }
-    if (checking_ && obs_setup_valid.read()) {
-      const uint32_t bits = obs_setup_bits.read();
-      const uint64_t box = obs_setup_box.read(), lines = obs_setup_lines.read();
+    if (checking_ && dut.obs_setup_valid_o) {
+      const uint32_t bits = dut.obs_setup_bits_o;
+      const uint64_t box = dut.obs_setup_box_o, lines = dut.obs_setup_lines_o;
       RtlSetup a;
       a.empty = bits & 1;
       a.x_major = (bits >> 1) & 1;
       a.no_lines = (bits >> 2) & 1;
       a.depth_range = (bits >> 3) & 1;
-      a.g = static_cast<int32_t>(obs_setup_g.read());
+      a.g = static_cast<int32_t>(dut.obs_setup_g_o);
       a.major_lo = static_cast<int64_t>((box >> 48) & 0xffff);
       a.major_count = static_cast<int64_t>((box >> 32) & 0xffff);
       a.minor_lo = static_cast<int64_t>((box >> 16) & 0xffff);
@@ -249,26 +263,26 @@ class Bench : public sc_core::sc_module {
       a.pixel_line_hi = static_cast<int32_t>(static_cast<uint32_t>(lines));
       if (!scoreboard_.setup(a)) fail();
     }
-    if (checking_ && obs_write_valid.read()) {
+    if (checking_ && dut.obs_write_valid_o) {
       RtlTableWrite w;
-      w.address = obs_write_addr.read();
-      w.t_u = static_cast<int64_t>(obs_write_tu.read());
-      w.t_v = static_cast<int64_t>(obs_write_tv.read());
-      w.s_u = static_cast<int64_t>(obs_write_su.read());
-      w.s_v = static_cast<int64_t>(obs_write_sv.read());
-      w.saturated = obs_write_flags.read() & 1;
-      w.depth_range = (obs_write_flags.read() >> 1) & 1;
-      w.eps_saturated = (obs_write_flags.read() >> 2) & 1;
-      w.eps = static_cast<int64_t>(obs_write_eps.read());
+      w.address = dut.obs_write_addr_o;
+      w.t_u = static_cast<int64_t>(dut.obs_write_tu_o);
+      w.t_v = static_cast<int64_t>(dut.obs_write_tv_o);
+      w.s_u = static_cast<int64_t>(dut.obs_write_su_o);
+      w.s_v = static_cast<int64_t>(dut.obs_write_sv_o);
+      w.saturated = dut.obs_write_flags_o & 1;
+      w.depth_range = (dut.obs_write_flags_o >> 1) & 1;
+      w.eps_saturated = (dut.obs_write_flags_o >> 2) & 1;
+      w.eps = static_cast<int64_t>(dut.obs_write_eps_o);
       if (!scoreboard_.table_write(w)) fail();
     }
-    if (rec_valid.read() && rec_ready.read()) {
+    if (dut.rec_valid_o && dut.rec_ready_i) {
       RtlRecord r;
-      r.cycles = static_cast<int64_t>(rec_cycles.read());
-      r.lines = rec_lines.read();
-      r.bands = rec_bands.read();
-      r.pixels = rec_pixels.read();
-      r.flags = rec_flags.read();
+      r.cycles = static_cast<int64_t>(dut.rec_cycles_o);
+      r.lines = dut.rec_lines_o;
+      r.bands = dut.rec_bands_o;
+      r.pixels = dut.rec_pixels_o;
+      r.flags = dut.rec_flags_o;
       if (checking_ && !scoreboard_.record(r, stalls_)) fail();
       if (!replay_) {
         last_record_clock_ = clock_cycles_;
@@ -281,7 +295,7 @@ class Bench : public sc_core::sc_module {
       if (options_.on_record && !replay_) options_.on_record(triangles_done_);
       if (!in_flight_.empty()) start_triangle(in_flight_.front());
     }
-    if (tri_valid.read() && tri_ready.read() && presenting_) {
+    if (dut.tri_valid_i && dut.tri_ready_o && presenting_) {
       const size_t job = presented_;
       presenting_ = false;
       if (first_accept_clock_ < 0 && !replay_) first_accept_clock_ = clock_cycles_;
@@ -293,7 +307,7 @@ class Bench : public sc_core::sc_module {
       }
     }
     const bool source_done = stopping_ || (next_job_ >= last_job_ && !presenting_);
-    if (source_done && in_flight_.empty()) sc_core::sc_pause();
+    if (source_done && in_flight_.empty()) done_ = true;
   }
 
   // The triangle whose fragments come next: its back-pressure generator, and
@@ -314,19 +328,6 @@ class Bench : public sc_core::sc_module {
     stopping_ = true;
   }
 
-  sc_core::sc_signal<bool> rst_n{"rst_n"}, tri_valid{"tri_valid"}, tri_ready{"tri_ready"};
-  sc_core::sc_signal<uint32_t> tri_x[3], tri_y[3], tri_q[3], tri_u[3], tri_v[3];
-  sc_core::sc_signal<uint32_t> viewport_width, viewport_height, kind, segment_log2, density_log2;
-  sc_core::sc_signal<bool> correction, persp, quadratic, fallback, kim_pipelined, frag_valid, frag_ready, rec_valid, rec_ready;
-  sc_core::sc_signal<uint32_t> frag_x, frag_y, frag_flags;
-  sc_core::sc_signal<uint64_t> frag_u, frag_v, rec_cycles;
-  sc_core::sc_signal<uint32_t> rec_lines, rec_bands, rec_pixels, rec_flags;
-  sc_core::sc_signal<bool> obs_setup_valid, obs_write_valid;
-  sc_core::sc_signal<uint32_t> obs_setup_bits, obs_setup_g, obs_write_addr, obs_write_flags;
-  sc_core::sc_signal<uint64_t> obs_write_eps;
-  sc_core::sc_signal<uint64_t> obs_setup_box, obs_setup_lines, obs_write_tu, obs_write_tv,
-      obs_write_su, obs_write_sv;
-
   const std::vector<Job>& jobs_;
   Scoreboard& scoreboard_;
   const BenchOptions& options_;
@@ -334,7 +335,9 @@ class Bench : public sc_core::sc_module {
   size_t triangles_done_ = 0;
   std::deque<size_t> in_flight_;  // accepted, not yet recorded, oldest first
   bool presenting_ = false, checking_ = true, failed_ = false, stopping_ = false;
-  bool replay_ = false, hung_ = false;
+  bool replay_ = false, hung_ = false, done_ = false;
+  VerilatedFstC* trace_ = nullptr;
+  int64_t time_ = 0, ticks_per_ns_ = 1;  // simulated ns, for the waveform
   int reset_cycles_ = 3;
   int64_t stalls_ = 0, clock_cycles_ = 0, busy_cycles_ = 0, cycle_limit_ = 0;
   int64_t first_accept_clock_ = -1, last_record_clock_ = -1, total_stalls_ = 0;
@@ -349,11 +352,12 @@ template <class Dut>
 int run_bench(const std::vector<Job>& jobs, const Widths& widths, const BenchOptions& options) {
   Verilated::traceEverOn(true);
   Scoreboard scoreboard(widths, options.seed);
+  scoreboard.set_unit_has_table(options.unit_has_table);
   Bench<Dut> bench("bench", jobs, scoreboard, options);
   bench.set_job_count(jobs.size());
-  sc_core::sc_start(sc_core::SC_ZERO_TIME);
-  auto trace = std::make_unique<VerilatedFstSc>();
+  auto trace = std::make_unique<VerilatedFstC>();
   bench.dut.trace(trace.get(), 99);
+  bench.set_trace(trace.get());
   if (!options.trace.empty()) trace->open(options.trace.c_str());
 
   const auto start = std::chrono::steady_clock::now();
@@ -402,6 +406,7 @@ int run_bench(const std::vector<Job>& jobs, const Widths& widths, const BenchOpt
     trace->close();
     if (!options.trace.empty()) std::cout << fmt::format("waveform: {}\n", options.trace_name);
   }
+  bench.dut.final();
   if (!options.coverage.empty()) Verilated::threadContextp()->coveragep()->write(options.coverage.c_str());
   std::cout << scoreboard.flag_census() << '\n';
   std::cout << fmt::format("blocks compared: {} setups, {} table writes\n",

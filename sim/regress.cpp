@@ -313,8 +313,22 @@ int regress(const Widths* given) {
                                                 options.backpressure, options.shard, options.only);
   }
   const bool adaptive = rtl_top(*designs.front()) == RtlTop::AdaptiveUnit;
-  const RunBench run_custom = builtin.empty() || coverage
-                                  ? load_custom_rtl(widths, options.rtl_cache, coverage_build, adaptive)
+  // The unit with only these designs' hardware, unless that is every design's,
+  // or the run measures coverage (of the whole unit's RTL, merged across runs).
+  std::vector<UnitParameter> parameters;
+  if (!adaptive && !options.whole_unit && !coverage) {
+    const std::vector<UnitParameter> own = unit_parameters(designs), whole = unit_parameters(designs_for("mix"));
+    const auto same = [](const UnitParameter& a, const UnitParameter& b) {
+      return std::string(a.name) == b.name && a.value == b.value;
+    };
+    if (!std::equal(own.begin(), own.end(), whole.begin(), whole.end(), same)) parameters = own;
+  }
+  std::cout << fmt::format("unit: {}\n", parameters.empty() ? std::string("every design's hardware")
+                                                           : "only these designs' hardware (" + unit_parameter_list(parameters) + ")");
+  for (const UnitParameter& p : parameters)
+    if (std::string(p.name) == "HasTable") bench_options.unit_has_table = p.value != 0;
+  const RunBench run_custom = builtin.empty() || coverage || !parameters.empty()
+                                  ? load_custom_rtl(widths, options.rtl_cache, coverage_build, adaptive, parameters)
                                   : nullptr;
   InterruptWatch watch("interrupt_watch");
   int status = 0;

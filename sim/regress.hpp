@@ -35,6 +35,9 @@ struct RegressOptions {
   std::string json_path;              // the summary as JSON
   std::string coverage_dir;           // coverage data and report (regress --coverage)
   bool coverage_toggle = true;        // false: a coverage build without toggle points (--no-toggle)
+  // The unit that every design of the scan unit has (the built-in models),
+  // instead of one with only the chosen designs' hardware (--whole-unit).
+  bool whole_unit = false;
 };
 
 // Registers the `regress` subcommand and its options on app

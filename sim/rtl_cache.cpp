@@ -77,7 +77,7 @@ namespace fs = std::filesystem;
 namespace {
 
 // Bumped whenever the layout or the build steps below change.
-constexpr const char* kCacheVersion = "rtl-cache-2";
+constexpr const char* kCacheVersion = "rtl-cache-3";
 constexpr const char* kPrefix = "Vcd_scan_unit_custom";
 
 std::string hex(uint64_t value) { return fmt::format("{:016x}", value); }
@@ -255,15 +255,27 @@ std::vector<std::string> sources_of(bool adaptive) {
 }
 
 // Verilator as verilate() in sim/CMakeLists.txt runs it for the built-in configurations.
+// Verilator's -G overrides of the top's parameters.
+std::vector<std::string> parameter_args(const std::vector<UnitParameter>& parameters) {
+  std::vector<std::string> args;
+  // The Has* parameters are `bit`s: a 32-bit constant would be a width warning.
+  for (const UnitParameter& p : parameters)
+    args.push_back(std::string(p.name).rfind("Has", 0) == 0 ? fmt::format("-G{}=1'b{}", p.name, p.value)
+                                                            : fmt::format("-G{}={}", p.name, p.value));
+  return args;
+}
+
 std::vector<std::string> verilator_command(const fs::path& verilated, const fs::path& header_dir,
-                                           CoverageBuild coverage, bool adaptive) {
+                                           CoverageBuild coverage, bool adaptive,
+                                           const std::vector<UnitParameter>& parameters) {
   std::vector<std::string> argv = {build::kVerilatorBin, "--compiler", build::kVerilatorCompiler,
                                    "--prefix", kPrefix, "--Mdir", verilated.string(),
-                                   "--make", "cmake", "--top", top_of(adaptive), "--trace-fst", "--sc",
+                                   "--make", "cmake", "--top", top_of(adaptive), "--trace-fst", "--cc",
                                    "-y", header_dir.string(), "-y", kRtlDir};
   for (const std::string& a : strings(build::kVerilatorArgs)) argv.push_back(a);
   for (const std::string& s : sources_of(adaptive)) argv.push_back(s);
   for (const std::string& a : coverage_args(coverage)) argv.push_back(a);
+  for (const std::string& a : parameter_args(parameters)) argv.push_back(a);
   return argv;
 }
 
@@ -277,15 +289,16 @@ std::vector<std::string> model_flags(CoverageBuild coverage) {
 }
 
 // What the model key covers besides the header and the RTL.
-std::string model_recipe(CoverageBuild coverage, bool adaptive) {
+std::string model_recipe(CoverageBuild coverage, bool adaptive, const std::vector<UnitParameter>& parameters) {
   std::string recipe = fmt::format(
-      "verilator: {} {} --prefix {} --top {} --trace-fst --sc {} {}\ncompiler: {} ({})\nflags: {}\n",
+      "verilator: {} {} --prefix {} --top {} --trace-fst --cc {} {}\ncompiler: {} ({})\nflags: {}\n",
       build::kVerilatorBin, build::kVerilatorVersion, kPrefix, top_of(adaptive),
       joined(strings(build::kVerilatorArgs)), joined(sources_of(adaptive)),
       build::kCompiler, build::kCompilerVersion, joined(model_flags(coverage)));
   if (coverage != CoverageBuild::None)
     recipe += fmt::format("coverage: {} {}\n", joined(coverage_args(coverage)),
                           hex(fnv1a(read_text_file(build::kCoverSource))));
+  if (!parameters.empty()) recipe += fmt::format("parameters: {}\n", joined(parameter_args(parameters)));
   return recipe;
 }
 
@@ -300,7 +313,8 @@ std::string model_recipe(CoverageBuild coverage, bool adaptive) {
 }
 
 void build_model(const fs::path& root, const fs::path& model_dir, const std::string& header,
-                 const std::string& inputs, CoverageBuild coverage, bool adaptive) {
+                 const std::string& inputs, CoverageBuild coverage, bool adaptive,
+                 const std::vector<UnitParameter>& parameters) {
   const fs::path tmp = root / fmt::format("tmp-{}-{}", model_dir.filename().string(), getpid());
   const fs::path kept_logs = root / ("failed-" + model_dir.filename().string());
   RemoveOnExit remove_tmp(tmp);
@@ -311,7 +325,7 @@ void build_model(const fs::path& root, const fs::path& model_dir, const std::str
   write_file_atomic(tmp / "inputs.txt", inputs);
   const auto start = std::chrono::steady_clock::now();
   try {
-    run_steps({{verilator_command(tmp / "verilated", tmp, coverage, adaptive), tmp / "log/verilator.log",
+    run_steps({{verilator_command(tmp / "verilated", tmp, coverage, adaptive, parameters), tmp / "log/verilator.log",
                 "Verilator"}},
               1);
   } catch (const StepFailed& failed) {
@@ -434,13 +448,13 @@ void run_tool(const std::vector<std::string>& argv, const std::string& log, cons
 }
 
 RunBench load_custom_rtl(const Widths& widths, const std::string& cache_dir, CoverageBuild coverage,
-                         bool adaptive) {
+                         bool adaptive, const std::vector<UnitParameter>& parameters) {
   const std::string header = adaptive ? rtl_header(adaptive_leaf_widths(widths), "custom, adaptive leaf unit")
                                       : rtl_header(widths, "custom");
   const fs::path root = fs::absolute(cache_dir.empty() ? default_rtl_cache_dir() : cache_dir);
   check_cache_folder(root, cache_dir.empty() ? "the RTL cache" : "--rtl-cache");
 
-  std::string inputs = fmt::format("widths: {}\n{}", describe(widths), model_recipe(coverage, adaptive));
+  std::string inputs = fmt::format("widths: {}\n{}", describe(widths), model_recipe(coverage, adaptive, parameters));
   uint64_t model_key = fnv1a(kCacheVersion);
   model_key = fnv1a(header, model_key);
   for (const fs::path& sv : files_in(kRtlDir, ".sv")) {
@@ -484,14 +498,15 @@ RunBench load_custom_rtl(const Widths& widths, const std::string& cache_dir, Cov
   }
   if (!fs::exists(model_dir)) {
     std::cout << fmt::format(
-        "regress: building the RTL{}{} for widths {} in {} (first use; about {:.0f} s)\n",
+        "regress: building the RTL{}{}{} for widths {} in {} (first use; about {:.0f} s)\n",
         adaptive ? " of the adaptive unit" : "",
+        parameters.empty() ? "" : fmt::format(" of the unit with {}", joined(parameter_args(parameters))),
         coverage == CoverageBuild::All     ? " with coverage"
         : coverage == CoverageBuild::Lines ? " with line coverage"
                                            : "",
         describe(widths), model_dir.string(), timings.model + timings.bench);
     std::cout.flush();
-    build_model(root, model_dir, header, inputs, coverage, adaptive);
+    build_model(root, model_dir, header, inputs, coverage, adaptive, parameters);
     timings.model = seconds_since(start);
     const auto bench_start = std::chrono::steady_clock::now();
     build_bench(root, model_dir, library);

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "design.hpp"
 #include "scoreboard.hpp"
 #include "widths.hpp"
 
@@ -30,9 +31,12 @@ using RunBench = int (*)(const std::vector<Job>* jobs, const Widths* widths,
 // build and the run several times faster.
 enum class CoverageBuild { None, Lines, All };
 // `adaptive`: the adaptive design's unit (rtl/adaptive_unit.sv), whose header
-// is its leaf unit's.
+// is its leaf unit's. `parameters`: the scan unit's Has*/Max* parameters
+// (unit_parameters, model/design.hpp) for a unit that holds only the chosen
+// designs' hardware, as `cdsim area` synthesises it; empty for every design's.
 RunBench load_custom_rtl(const Widths& widths, const std::string& cache_dir,
-                         CoverageBuild coverage = CoverageBuild::None, bool adaptive = false);
+                         CoverageBuild coverage = CoverageBuild::None, bool adaptive = false,
+                         const std::vector<UnitParameter>& parameters = {});
 
 // Runs one tool (argv[0] looked up on PATH), its output to `log`; throws
 // naming `what`, the exit status and the log's first lines when it fails.

@@ -65,6 +65,11 @@ class Scoreboard {
  public:
   Scoreboard(const Widths& widths, uint64_t seed) : widths_(widths), seed_(seed), schedule_(widths) {}
 
+  // A unit without the scanline table (HasTable = 0: divide, affine or Kim
+  // alone) computes no g and no pixel line range, and its observation ports
+  // read 0 there: the setup comparison leaves them out.
+  void set_unit_has_table(bool has_table) { unit_has_table_ = has_table; }
+
   // A triangle accepted by the unit: the model runs it and places it on the
   // unit's schedule; its fragments and record become the expectation.
   void accept(size_t index, const Job& job);
@@ -115,6 +120,7 @@ class Scoreboard {
 
   Widths widths_;
   uint64_t seed_;
+  bool unit_has_table_ = true;
   std::map<std::tuple<std::string, int, int>, std::unique_ptr<ScanUnit>> units_;
   UnitSchedule schedule_;  // one stream through the unit, whatever the designs
   std::deque<Expected> pending_;

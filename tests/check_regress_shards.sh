@@ -7,7 +7,7 @@
 set -euo pipefail
 cdsim=$1 work=$2
 rm -rf "$work" && mkdir -p "$work" && cd "$work"
-run=(regress --random 300 --seed 11 --backpressure 0.3 --design cd-linear,divide,affine-sub8,cd-dense2-linear)
+run=(regress --random 300 --seed 11 --backpressure 0.3 --design cd-linear,divide,affine-sub8,cd-dense2-linear --whole-unit)
 "$cdsim" "${run[@]}" --json whole.json > whole.txt
 parallel --halt now,fail=1 "$cdsim" "${run[@]}" --shard {}/3 --json shard{}.json '>' shard{}.txt ::: 1 2 3
 "$cdsim" merge shard1.json shard2.json shard3.json --out merged.json > merged.txt
