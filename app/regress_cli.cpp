@@ -47,15 +47,15 @@ CLI::App* add_regress_command(CLI::App& app, RegressOptions& options) {
   add_source_options(cmd, options);
   cmd->get_option("--set")->description(
       "NAME=VALUE: change a width or microarchitecture parameter (see 'cdsim widths'); "
-      "repeatable, each parameter once. Widths no configuration has are verilated on "
-      "first use and cached");
+      "repeatable, each parameter once. Each unit at each widths is verilated on first "
+      "use and cached (--rtl-cache)");
   cmd->add_option("--backpressure", options.backpressure,
                   "probability that the fragment sink stalls a cycle")
       ->check(cli::number_in(0.0, 0.95))
       ->capture_default_str();
   cmd->add_option("--trace", options.trace, "write an FST waveform of the whole run to this file");
   cmd->add_option("--rtl-cache", options.rtl_cache,
-                  "folder of the RTL verilated for --set widths (default $XDG_CACHE_HOME/cdsim/rtl "
+                  "folder of the RTL units verilated on first use (default $XDG_CACHE_HOME/cdsim/rtl "
                   "or ~/.cache/cdsim/rtl)");
   cmd->add_option("--shard", options.shard,
                   "I/N: run only the I-th of N shards (every N-th triangle from the I-th, each with "
@@ -71,9 +71,8 @@ CLI::App* add_regress_command(CLI::App& app, RegressOptions& options) {
                 "only), for a coverage build that builds and runs several times faster")
       ->needs(coverage);
   cmd->add_flag("--whole-unit", options.whole_unit,
-                "run the unit with every design's hardware (built with cdsim), rather than one that "
-                "holds only the chosen designs' datapaths, verilated on first use into the RTL cache "
-                "as --set widths are (as cdsim area synthesises it; it simulates faster)");
+                "run the unit with every design's hardware, rather than one that holds only the "
+                "chosen designs' datapaths (as cdsim area synthesises it; it simulates faster)");
   cmd->add_option("--only", options.only, "run only triangle N of the source, from 0 (to chase a mismatch)")
       ->check(cli::integer_in(0, std::numeric_limits<int64_t>::max()));
   return cmd;

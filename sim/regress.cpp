@@ -1,6 +1,7 @@
 // `cdsim regress`: the triangles (a scene or seeded random ones), the widths
-// (a built-in configuration, or any widths with --set, verilated on first use
-// into a cache by rtl_cache.cpp), and the one bench of bench.hpp that runs the
+// (a named configuration, or any widths with --set), the unit (every design's
+// hardware, or only the chosen designs'), verilated on first use into a cache
+// by rtl_cache.cpp, and the one bench of bench.hpp that runs the
 // Verilated scan unit against the C++ model.
 #include "regress.hpp"
 
@@ -22,13 +23,7 @@
 #include <memory>
 #include <tuple>
 
-#include "Vcd_scan_unit_default.h"
-#include "Vcd_scan_unit_narrow.h"
-#include "Vcd_scan_unit_wide.h"
-#include "Vadaptive_unit_default.h"
-#include "Vadaptive_unit_narrow.h"
-#include "Vadaptive_unit_wide.h"
-#include "bench.hpp"
+#include "bench.hpp"  // BenchOptions, BenchSummary
 #include "evaluate.hpp"
 #include "interrupt.hpp"
 #include "progress.hpp"
@@ -212,16 +207,16 @@ std::vector<Job> source_jobs(const RegressOptions& o, const Widths& widths,
 
 namespace {
 
-// The built-in configuration with exactly these widths, or "" if none.
+// The named configuration with exactly these widths, or "" if none.
 std::string builtin_config_of(const Widths& widths) {
   for (const auto& c : kConfigs)
     if (describe(widths_of(c.name)) == describe(widths)) return c.name;
   return "";
 }
 
-// Runs the bench at the widths of `options`: a built-in configuration, one with
-// --set on top, or exactly `given` (size --verify). Widths that no built-in
-// configuration has run on the RTL verilated for them into the cache.
+// Runs the bench at the widths of `options`: a named configuration, one with
+// --set on top, or exactly `given` (size --verify), on the RTL verilated for
+// them (and the unit's parameters) into the cache.
 int regress(const Widths* given) {
   Widths widths = given ? *given : widths_of(options.widths);
   apply_settings(widths, options.settings);
@@ -241,7 +236,7 @@ int regress(const Widths* given) {
   std::string label = given ? "as sized" : options.widths;
   if (!options.settings.empty()) label += " with";
   for (const std::string& s : options.settings) label += " " + s;
-  if (exact && !builtin.empty()) label += fmt::format(" (= built-in '{}')", builtin);
+  if (exact && !builtin.empty()) label += fmt::format(" (= the '{}' configuration)", builtin);
   const std::vector<const Design*> designs = designs_for(options.design);
   std::cout << fmt::format("regress: seed {}\n", options.seed);
   std::string source;
@@ -301,7 +296,7 @@ int regress(const Widths* given) {
           ? int64_t{0}
           : *std::max_element(bench_options.cycle_limits.begin(), bench_options.cycle_limits.end()));
   std::cout.flush();
-  // A coverage run takes a coverage build even at built-in widths.
+  // A coverage run takes a coverage build.
   const bool coverage = !options.coverage_dir.empty();
   const CoverageBuild coverage_build = !coverage                ? CoverageBuild::None
                                        : options.coverage_toggle ? CoverageBuild::All
@@ -327,18 +322,9 @@ int regress(const Widths* given) {
                                                            : "only these designs' hardware (" + unit_parameter_list(parameters) + ")");
   for (const UnitParameter& p : parameters)
     if (std::string(p.name) == "HasTable") bench_options.unit_has_table = p.value != 0;
-  const RunBench run_custom = builtin.empty() || coverage || !parameters.empty()
-                                  ? load_custom_rtl(widths, options.rtl_cache, coverage_build, adaptive, parameters)
-                                  : nullptr;
+  const RunBench run_unit = load_custom_rtl(widths, options.rtl_cache, coverage_build, adaptive, parameters);
   InterruptWatch watch("interrupt_watch");
-  int status = 0;
-  if (run_custom) status = run_custom(&jobs, &widths, &bench_options);
-  else if (adaptive && builtin == "default") status = run_bench<Vadaptive_unit_default>(jobs, widths, bench_options);
-  else if (adaptive && builtin == "narrow") status = run_bench<Vadaptive_unit_narrow>(jobs, widths, bench_options);
-  else if (adaptive) status = run_bench<Vadaptive_unit_wide>(jobs, widths, bench_options);
-  else if (builtin == "default") status = run_bench<Vcd_scan_unit_default>(jobs, widths, bench_options);
-  else if (builtin == "narrow") status = run_bench<Vcd_scan_unit_narrow>(jobs, widths, bench_options);
-  else status = run_bench<Vcd_scan_unit_wide>(jobs, widths, bench_options);
+  const int status = run_unit(&jobs, &widths, &bench_options);
   throw_if_interrupted();
   if (drawn && !ended)  // a run that stopped early ends its bar too
     progress.update(static_cast<size_t>(std::max<int64_t>(0, summary.triangles)),

@@ -28,15 +28,15 @@ struct RegressOptions {
   std::string design = "mix";
   int64_t only = -1;                  // -1: every triangle
   std::vector<std::string> settings;  // NAME=VALUE on top of `widths`
-  std::string rtl_cache;              // folder of the RTL verilated for --set widths
+  std::string rtl_cache;              // folder of the RTL units verilated on first use
   bool scene_and_random = false;      // the scene, then `random` triangles (size --verify)
   std::vector<std::string> more_scenes;  // after `scene`, in the same stream (choose's check)
   std::string shard;                  // "I/N": every N-th triangle from the I-th (cdsim merge joins them)
   std::string json_path;              // the summary as JSON
   std::string coverage_dir;           // coverage data and report (regress --coverage)
   bool coverage_toggle = true;        // false: a coverage build without toggle points (--no-toggle)
-  // The unit that every design of the scan unit has (the built-in models),
-  // instead of one with only the chosen designs' hardware (--whole-unit).
+  // The unit with every design of the scan unit's hardware, instead of one
+  // with only the chosen designs' (--whole-unit).
   bool whole_unit = false;
 };
 

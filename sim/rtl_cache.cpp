@@ -1,9 +1,10 @@
-// The cache of RTL verilated for widths that no built-in configuration has.
+// The cache of the RTL that `cdsim regress` runs: every unit, at any widths,
+// verilated on first use (cdsim itself holds no verilated unit).
 //
 //   <cache>/                   a folder of this user's, mode 0700, checked
 //                              (owner, mode) before each use: cdsim loads code
 //                              from it (cache_files.hpp, check_cache_folder)
-//   <cache>/<model key>/       one width configuration, verilated and compiled;
+//   <cache>/<model key>/       one unit at one width configuration, verilated and compiled;
 //                              built in <cache>/tmp-<model key>-*, renamed into
 //                              place when complete, so a folder under this name
 //                              is finished
@@ -29,7 +30,8 @@
 // (model/child_process.hpp).
 //
 // The model key is FNV-1a 64 of the header, every rtl/*.sv, Verilator's binary,
-// version and arguments, and the compiler and its flags. The bench key adds
+// version and arguments (the unit's -G parameters among them), and the
+// compiler and its flags. The bench key adds
 // cdsim's build ID and the bench's sources and flags: the shared object takes
 // the SystemC kernel, the Verilator runtime and the model code from cdsim
 // (which exports its symbols), so it must match this very build. A rebuild of
@@ -254,7 +256,7 @@ std::vector<std::string> sources_of(bool adaptive) {
   return adaptive ? strings(build::kAdaptiveSources) : strings(build::kRtlSources);
 }
 
-// Verilator as verilate() in sim/CMakeLists.txt runs it for the built-in configurations.
+// Verilator with the arguments sim/CMakeLists.txt gives verilate() (CDSIM_VERILATOR_ARGS).
 // Verilator's -G overrides of the top's parameters.
 std::vector<std::string> parameter_args(const std::vector<UnitParameter>& parameters) {
   std::vector<std::string> args;
