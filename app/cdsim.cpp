@@ -17,6 +17,7 @@
 #include "cli.hpp"
 #include "common.hpp"
 #include "interrupt.hpp"
+#include "progress.hpp"
 #include "render.hpp"
 #include "size.hpp"
 #include "sweep.hpp"
@@ -58,7 +59,7 @@ class FragmentDump {
 };
 
 int run_command(const CommonOptions& options, const std::string& json_path, bool show_worst,
-                bool with_area, const std::string& dump_path, const std::string& flagged_path) {
+                bool with_area, const std::string& dump_path, const std::string& flagged_path, unsigned jobs) {
   const Widths widths = widths_from(options);
   const std::vector<Design> designs = designs_from(options.designs);
   if (!json_path.empty()) check_output_folder("--json", json_path);
@@ -68,20 +69,25 @@ int run_command(const CommonOptions& options, const std::string& json_path, bool
                        {{"--scene", scene_input_file(options.scene)}});
   const PreparedScene scene = prepare(load_scene(options.scene, options.scene_options), widths);
   std::cout << provenance(scene.scene, widths) << std::endl;  // before the long part
-  std::vector<DesignResult> results;
+  // The designs in parallel, `jobs` at a time (each evaluate() is independent);
+  // the dump is the first design's, and each design tallies its own flagged
+  // triangles, joined in the designs' order.
+  std::vector<DesignResult> results(designs.size());
   FragmentDump dump(widths.out_frac);
-  FlaggedTriangles flagged(scene, widths);
-  for (const Design& d : designs) {
-    if (isatty(fileno(stderr))) fmt::print(stderr, "running {} ...\r", d.name);
-    const bool dumped = !dump_path.empty() && results.empty(), tallied = !flagged_path.empty();
+  std::vector<FlaggedTriangles> flagged_of(designs.size(), FlaggedTriangles(scene, widths));
+  run_parallel(designs.size(), jobs, "run", "designs", [&](size_t i) {
+    const bool dumped = !dump_path.empty() && i == 0, tallied = !flagged_path.empty();
+    FlaggedTriangles& flagged = flagged_of[i];
     const FragmentVisitor visit = [&](int64_t t, const Fragment& f, const ExactSample& x) {
       if (dumped) dump.add(t, f, x);
       if (tallied) flagged.add(t, f, x);
     };
-    if (tallied) flagged.start(d);
-    results.push_back(evaluate(scene, d, widths, true, dumped || tallied ? &visit : nullptr));
+    if (tallied) flagged.start(designs[i]);
+    results[i] = evaluate(scene, designs[i], widths, true, dumped || tallied ? &visit : nullptr);
     if (tallied) flagged.finish();
-  }
+  });
+  FlaggedTriangles flagged(scene, widths);
+  for (FlaggedTriangles& f : flagged_of) flagged.append(std::move(f));
   std::cout << results_table(results, widths);
   std::cout << cycle_breakdown_table(results);
   if (show_worst) std::cout << worst_pixels(results, scene.scene, widths);
@@ -89,11 +95,11 @@ int run_command(const CommonOptions& options, const std::string& json_path, bool
   nlohmann::json json = results_json(scene.scene, widths, results);
   if (with_area) {
     const AreaOptions area_options;
-    std::vector<AreaJob> jobs;
+    std::vector<AreaJob> syntheses;
     for (const Design& d : designs)
-      if (has_rtl(d)) jobs.push_back({d, widths});
+      if (has_rtl(d)) syntheses.push_back({d, widths});
     std::fflush(stdout);
-    const std::vector<AreaReport> areas = synthesise_areas(jobs, area_options, 0);
+    const std::vector<AreaReport> areas = synthesise_areas(syntheses, area_options, jobs);
     std::vector<double> px_per_clk;
     for (const DesignResult& r : results)
       if (has_rtl(r.design)) px_per_clk.push_back(r.pixels_per_clock());
@@ -225,7 +231,8 @@ int dispatch(Cli& cli) {
       fmt::print("{:<17} {}{}\n", d.name, d.summary, has_rtl(d) ? "" : " [model only: no RTL yet]");
     return 0;
   }
-  return run_command(cli.run, cli.json_path, cli.show_worst, cli.run_area, cli.dump_path, cli.flagged_path);
+  return run_command(cli.run, cli.json_path, cli.show_worst, cli.run_area, cli.dump_path, cli.flagged_path,
+                     static_cast<unsigned>(cli.run_jobs));
 }
 
 // What was printed must have reached stdout: a full disk or a closed file is

@@ -23,6 +23,8 @@ std::unique_ptr<Cli> make_cli() {
   cli->run_command->add_flag("--area", cli->run_area,
                              "also synthesise each design at these widths (cdsim area, cached; "
                              "all cores) and report its area");
+  cli->run_command->add_option("--jobs", cli->run_jobs, "designs evaluated at a time (default: all cores)")
+      ->check(cli::integer_in(1, 1024));
 
   cli->bench_command = app.add_subcommand("bench", "model throughput per design, in M pixels/s");
   add_common(cli->bench_command, cli->bench);

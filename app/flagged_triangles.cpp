@@ -55,6 +55,11 @@ void FlaggedTriangles::finish() {
   tallies_.clear();
 }
 
+void FlaggedTriangles::append(FlaggedTriangles&& other) {
+  for (Row& row : other.rows_) rows_.push_back(std::move(row));
+  other.rows_.clear();
+}
+
 std::string FlaggedTriangles::csv() const {
   fmt::memory_buffer out;
   fmt::format_to(std::back_inserter(out),

@@ -20,6 +20,8 @@ class FlaggedTriangles {
   void start(const Design& design);
   void add(int64_t triangle, const Fragment& fragment, const ExactSample& exact);
   void finish();
+  // The rows of another collector (of later designs) after this one's.
+  void append(FlaggedTriangles&& other);
 
   std::string csv() const;
   std::string table(size_t rows_per_design) const;

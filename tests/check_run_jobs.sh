@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# run evaluates its designs in parallel (--jobs): one design at a time and
+# all at once must print and write the same (the tables, the JSON, the first
+# design's dump, every design's flagged triangles in the designs' order).
+# Usage: check_run_jobs.sh CDSIM WORKDIR SCENE
+set -euo pipefail
+cdsim=$1 work=$2 scene=$3
+rm -rf "$work" && mkdir -p "$work"
+designs=cd-linear,divide,cd-persp,affine,kim-pipe,adaptive
+for j in 1 4; do
+  mkdir -p "$work/$j"
+  "$cdsim" run --scene "$scene" --design "$designs" --set out_int=8 --jobs "$j" --dump "$work/$j/dump.csv" \
+    --flagged "$work/$j/flagged.csv" --json "$work/$j/run.json" 2>/dev/null |
+    grep -v -E '^(build|wrote) ' > "$work/$j/run.txt"
+done
+for f in run.txt dump.csv flagged.csv; do
+  cmp "$work/1/$f" "$work/4/$f" || { echo "FAIL: $f differs between --jobs 1 and --jobs 4"; exit 1; }
+done
+diff <(grep -v '"build"' "$work/1/run.json") <(grep -v '"build"' "$work/4/run.json") ||
+  { echo "FAIL: run.json differs between --jobs 1 and --jobs 4"; exit 1; }
+# The check has teeth only if several designs flag triangles: their rows
+# come in the designs' order.
+order=$(cut -d, -f1 "$work/1/flagged.csv" | tail -n +2 | uniq | paste -sd, -)
+echo "flagged rows by design: $order"
+[[ $order == *,* ]] || { echo "FAIL: fewer than two designs flag triangles"; exit 1; }
+expected=$(tr , '\n' <<< "$designs" | grep -x -F -f <(tr , '\n' <<< "$order") | paste -sd, -)
+[[ $order == "$expected" ]] || { echo "FAIL: flagged rows not in the designs' order ($order, expected $expected)"; exit 1; }
+echo PASS
