@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstring>
 #include <iostream>
+#include <thread>
 
 #include "area.hpp"
 #include "cache_files.hpp"
@@ -75,6 +76,9 @@ int run_command(const CommonOptions& options, const std::string& json_path, bool
   std::vector<DesignResult> results(designs.size());
   FragmentDump dump(widths.out_frac);
   std::vector<FlaggedTriangles> flagged_of(designs.size(), FlaggedTriangles(scene, widths));
+  // Fewer designs than cores: each measures its error on the cores left.
+  const unsigned cores = jobs > 0 ? jobs : std::max(1u, std::thread::hardware_concurrency());
+  const unsigned threads = std::max<unsigned>(1, cores / static_cast<unsigned>(designs.size()));
   run_parallel(designs.size(), jobs, "run", "designs", [&](size_t i) {
     const bool dumped = !dump_path.empty() && i == 0, tallied = !flagged_path.empty();
     FlaggedTriangles& flagged = flagged_of[i];
@@ -83,7 +87,7 @@ int run_command(const CommonOptions& options, const std::string& json_path, bool
       if (tallied) flagged.add(t, f, x);
     };
     if (tallied) flagged.start(designs[i]);
-    results[i] = evaluate(scene, designs[i], widths, true, dumped || tallied ? &visit : nullptr);
+    results[i] = evaluate(scene, designs[i], widths, true, dumped || tallied ? &visit : nullptr, threads);
     if (tallied) flagged.finish();
   });
   FlaggedTriangles flagged(scene, widths);

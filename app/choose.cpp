@@ -9,6 +9,7 @@
 #include <limits>
 #include <optional>
 #include <stdexcept>
+#include <thread>
 
 #include "area.hpp"
 #include "cache_files.hpp"
@@ -165,18 +166,21 @@ int run_choose_command(const ChooseOptions& options) {
   std::vector<Candidate> candidates(designs.size());
   std::vector<double> seconds(designs.size());
   std::vector<int> evaluations(designs.size());
+  // Each design's error measurement may take every core too: at the end,
+  // when fewer designs than cores are left, the last ones use them all.
+  const unsigned threads = options.jobs > 0 ? options.jobs : std::max(1u, std::thread::hardware_concurrency());
   run_parallel(designs.size(), options.jobs, "choose", "designs sized", [&](size_t k) {
     const Design& d = designs[k];
     const auto start = std::chrono::steady_clock::now();
     Candidate& c = candidates[k];
     c.design = d;
-    Sizing sizing = size_design(d, scene_list, user, target);
+    Sizing sizing = size_design(d, scene_list, user, target, {}, threads);
     // One budget for both: the cycles of the fully parallel setup engine (or
     // the user's) and the unbanded table, times --max-slowdown.
     c.unbanded_cycles = total(sizing.results, &DesignResult::cycles);
     if (!user_sets_setup)
-      shrink_setup(d, scene_list, target, options.max_slowdown, c.unbanded_cycles, sizing, options.min_rate);
-    shrink_table(d, scene_list, target, options.max_slowdown, c.unbanded_cycles, sizing, options.min_rate);
+      shrink_setup(d, scene_list, target, options.max_slowdown, c.unbanded_cycles, sizing, options.min_rate, threads);
+    shrink_table(d, scene_list, target, options.max_slowdown, c.unbanded_cycles, sizing, options.min_rate, threads);
     c.meets = sizing.reachable && sizing.error <= target.max_error;
     c.widths = sizing.widths;
     c.error = sizing.error;

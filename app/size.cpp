@@ -9,6 +9,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <thread>
 
 #include "cli_checks.hpp"
 #include "derived_widths.hpp"
@@ -85,7 +86,7 @@ double target_measure(const DesignResult& r, const ErrorTarget& target) {
 
 Sizing size_design(const Design& design, const std::vector<const PreparedScene*>& scenes,
                    const Widths& user, const ErrorTarget& target,
-                   const std::function<void(const std::string&, int)>& on_width) {
+                   const std::function<void(const std::string&, int)>& on_width, unsigned threads) {
   Sizing sizing;
   // A narrower width must not make the datapath saturate where the widest
   // widths do not: per scene, no flag (but banding, which the table depth
@@ -98,7 +99,7 @@ Sizing size_design(const Design& design, const std::vector<const PreparedScene*>
     double value = 0;
     for (size_t i = 0; i < scenes.size(); ++i) {
       ++sizing.evaluations;
-      DesignResult r = evaluate(*scenes[i], design, w);
+      DesignResult r = evaluate(*scenes[i], design, w, true, nullptr, threads);
       value = std::max(value, target_measure(r, target));
       if (!allowed.empty() && saturates_more(allowed[i], r)) value = std::numeric_limits<double>::infinity();
       if (results) results->push_back(std::move(r));
@@ -158,14 +159,14 @@ namespace {
 // at min_rate px/clk or more.
 bool take_if_within(const Design& design, const std::vector<const PreparedScene*>& scenes,
                     const ErrorTarget& target, double max_slowdown, int64_t reference_cycles,
-                    const Widths& trial, Sizing& sizing, double min_rate) {
+                    const Widths& trial, Sizing& sizing, double min_rate, unsigned threads) {
   std::vector<DesignResult> results;
   double error = 0;
   int64_t cycles = 0;
   bool flagged = false, slow = false;
   for (size_t i = 0; i < scenes.size(); ++i) {
     ++sizing.evaluations;
-    results.push_back(evaluate(*scenes[i], design, trial));
+    results.push_back(evaluate(*scenes[i], design, trial, true, nullptr, threads));
     error = std::max(error, target_measure(results.back(), target));
     cycles += results.back().cycles;
     flagged = flagged || saturates_more(sizing.widest_flags[i], results.back());
@@ -185,19 +186,20 @@ std::vector<int> setup_multiplier_choices() { return {1, 2, 4, 8}; }
 
 void shrink_setup(const Design& design, const std::vector<const PreparedScene*>& scenes,
                   const ErrorTarget& target, double max_slowdown, int64_t reference_cycles, Sizing& sizing,
-                  double min_rate) {
+                  double min_rate, unsigned threads) {
   if (!sizing.reachable || sizing.widths.setup_multipliers != 0) return;
   for (const int m : setup_multiplier_choices()) {
     throw_if_interrupted();
     Widths trial = sizing.widths;
     trial.setup_multipliers = m;
-    if (take_if_within(design, scenes, target, max_slowdown, reference_cycles, trial, sizing, min_rate)) return;
+    if (take_if_within(design, scenes, target, max_slowdown, reference_cycles, trial, sizing, min_rate, threads))
+      return;
   }
 }
 
 void shrink_table(const Design& design, const std::vector<const PreparedScene*>& scenes,
                   const ErrorTarget& target, double max_slowdown, int64_t reference_cycles, Sizing& sizing,
-                  double min_rate) {
+                  double min_rate, unsigned threads) {
   if (!sizing.reachable || design.kind != Design::Kind::ConstantDepth) return;
   const int minimum = info("table_depth").min_value;
   for (int depth = sizing.widths.table_depth / 2; depth >= minimum; depth /= 2) {
@@ -205,7 +207,8 @@ void shrink_table(const Design& design, const std::vector<const PreparedScene*>&
     Widths trial = sizing.widths;
     trial.table_depth = depth;
     // A smaller table only bands more.
-    if (!take_if_within(design, scenes, target, max_slowdown, reference_cycles, trial, sizing, min_rate)) break;
+    if (!take_if_within(design, scenes, target, max_slowdown, reference_cycles, trial, sizing, min_rate, threads))
+      break;
   }
 }
 
@@ -261,10 +264,15 @@ int run_size_command(const SizeOptions& options) {
   std::fflush(stdout);
 
   const ErrorTarget target{options.max_error, options.metric, options.statistic};
-  const Sizing sizing = size_design(design, {&scene}, user, target, [](const std::string& name, int value) {
-    fmt::print("  {:<12} {:>3}\n", name, value);
-    std::fflush(stdout);
-  });
+  // One scene and one design: the error measurement takes every core.
+  const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+  const Sizing sizing = size_design(
+      design, {&scene}, user, target,
+      [](const std::string& name, int value) {
+        fmt::print("  {:<12} {:>3}\n", name, value);
+        std::fflush(stdout);
+      },
+      threads);
   if (!sizing.reachable) {
     fmt::print(stderr, "cdsim: not reachable: at the widest widths the {} {} error is {:.4g} > {}\n",
                options.statistic, options.metric, sizing.error, options.max_error);
@@ -288,7 +296,7 @@ int run_size_command(const SizeOptions& options) {
   for (const int m : setups) {
     Widths trial = w;
     trial.setup_multipliers = m;
-    const DesignResult r = evaluate(scene, design, trial);
+    const DesignResult r = evaluate(scene, design, trial, false);  // cycles only
     if (m == 0) parallel_cycles = r.cycles;
     fmt::print("{:>20} {:>8} {:>12} {:>7.3f} {:>9.4f}{}\n", m == 0 ? "0 (one per product)" : std::to_string(m),
                derive(trial).setup_cycles, r.cycles, r.cycles ? double(r.pixels) / double(r.cycles) : 0.0,

@@ -53,7 +53,7 @@ struct Sizing {
 // told each width as it is fixed.
 Sizing size_design(const Design& design, const std::vector<const PreparedScene*>& scenes,
                    const Widths& user, const ErrorTarget& target,
-                   const std::function<void(const std::string&, int)>& on_width = {});
+                   const std::function<void(const std::string&, int)>& on_width = {}, unsigned threads = 1);
 
 // The setup engine's multipliers tried, from the cheapest: M shared
 // multipliers of setup_mul_bits (docs/area.md: each is smaller than M = 0,
@@ -69,7 +69,7 @@ std::vector<int> setup_multiplier_choices();
 // starts from other than 0 (the user's) stays.
 void shrink_setup(const Design& design, const std::vector<const PreparedScene*>& scenes,
                   const ErrorTarget& target, double max_slowdown, int64_t reference_cycles, Sizing& sizing,
-                  double min_rate = 0);
+                  double min_rate = 0, unsigned threads = 1);
 
 // Halves a reachable table design's table depth while every scene still meets
 // the target and raises no saturation flag on more triangles than at the
@@ -79,7 +79,7 @@ void shrink_setup(const Design& design, const std::vector<const PreparedScene*>&
 // evaluations.
 void shrink_table(const Design& design, const std::vector<const PreparedScene*>& scenes,
                   const ErrorTarget& target, double max_slowdown, int64_t reference_cycles, Sizing& sizing,
-                  double min_rate = 0);
+                  double min_rate = 0, unsigned threads = 1);
 
 CLI::App* add_size_command(CLI::App& app, SizeOptions& options);
 int run_size_command(const SizeOptions& options);

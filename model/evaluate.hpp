@@ -88,7 +88,10 @@ PixelError pixel_error(const Fragment& fragment, const struct ExactSample& exact
 // Called for every fragment whose error is measured, with its triangle's index.
 using FragmentVisitor = std::function<void(int64_t triangle, const Fragment&, const ExactSample&)>;
 
+// With threads > 1 the error measurement (the exact reference of every
+// fragment) runs on that many threads; the result is the same bit for bit.
 DesignResult evaluate(const PreparedScene& scene, const Design& design, const Widths& widths,
-                      bool measure_error = true, const FragmentVisitor* visit = nullptr);
+                      bool measure_error = true, const FragmentVisitor* visit = nullptr,
+                      unsigned threads = 1);
 
 }  // namespace cdsim
