@@ -249,6 +249,7 @@ int run_choose_command(const ChooseOptions& options) {
     request.random = options.verify_random;
     request.backpressure = options.verify_backpressure;
     request.rtl_cache = options.rtl_cache;
+    request.jobs = threads;  // in shards, one a core
     winner.rtl_verified = rtl::verify_widths(request) == 0 ? "yes" : "no";
     fmt::print("\n");
   }

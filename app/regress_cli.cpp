@@ -75,6 +75,16 @@ CLI::App* add_regress_command(CLI::App& app, RegressOptions& options) {
                 "chosen designs' datapaths (as cdsim area synthesises it; it simulates faster)");
   cmd->add_option("--only", options.only, "run only triangle N of the source, from 0 (to chase a mismatch)")
       ->check(cli::integer_in(0, std::numeric_limits<int64_t>::max()));
+  // The stream of size's and choose's RTL check, which runs it in shards.
+  CLI::Option* then_scene =
+      cmd->add_option("--then-scene", options.more_scenes,
+                      "another scene after --scene, in the same stream at its own viewport (repeatable; "
+                      "--camera, --spawn and --resolution apply to every scene)");
+  CLI::Option* then_random =
+      cmd->add_option("--then-random", options.then_random,
+                      "after the scene(s), N seeded random triangles in the same stream (as size --verify)")
+          ->check(cli::unsigned_in(1, kMaxRandomTriangles));
+  cmd->get_option("--random")->excludes(then_scene)->excludes(then_random);
   return cmd;
 }
 

@@ -315,6 +315,7 @@ int run_size_command(const SizeOptions& options) {
   request.random = options.verify_random;
   request.backpressure = options.verify_backpressure;
   request.rtl_cache = options.rtl_cache;
+  request.jobs = threads;  // in shards, one a core
   const int verified = rtl::verify_widths(request);
   return status != 0 ? status : verified;
 }

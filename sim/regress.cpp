@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <systemc.h>
 
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -20,6 +21,8 @@
 #include <filesystem>
 #include <iostream>
 #include <map>
+#include <sstream>
+#include <thread>
 #include <memory>
 #include <tuple>
 
@@ -34,6 +37,7 @@
 #include "scoreboard.hpp"
 #include "shard.hpp"
 #include "cache_files.hpp"
+#include "child_process.hpp"
 #include "report.hpp"
 
 // SystemC's library refers to sc_main; cdsim has its own main and starts the
@@ -369,6 +373,10 @@ int64_t hang_cycle_limit(int64_t model_cycles, int64_t pixels, double backpressu
 
 int run_regress_command(const RegressOptions& given) {
   options = given;
+  if (options.then_random > 0) {
+    options.scene_and_random = true;
+    options.random = options.then_random;
+  }
   try {
     return regress(nullptr);
   } catch (const Interrupted&) {
@@ -380,7 +388,114 @@ int run_regress_command(const RegressOptions& given) {
   }
 }
 
+namespace {
+
+// The RTL check in request.jobs shards at once: each a child `cdsim regress
+// --shard I/N` of the same stream, at exactly these widths (every parameter
+// --set), its output in a log and its summary in JSON; the summaries added up.
+int verify_in_shards(const VerifyRequest& request) {
+  namespace fs = std::filesystem;
+  const unsigned count = request.jobs;
+  const fs::path folder = fs::temp_directory_path() / fmt::format("cdsim-verify-{}", getpid());
+  fs::remove_all(folder);
+  fs::create_directories(folder);
+  RemoveOnExit remove_folder(folder);
+  std::vector<std::string> base = {fs::read_symlink("/proc/self/exe").string(), "regress",
+                                   "--scene", request.scenes.front()};
+  for (size_t i = 1; i < request.scenes.size(); ++i) base.insert(base.end(), {"--then-scene", request.scenes[i]});
+  if (!request.scene_options.camera.empty()) base.insert(base.end(), {"--camera", request.scene_options.camera});
+  if (request.scene_options.spawn >= 0)
+    base.insert(base.end(), {"--spawn", std::to_string(request.scene_options.spawn)});
+  if (!request.scene_options.resolution.empty())
+    base.insert(base.end(), {"--resolution", request.scene_options.resolution});
+  if (request.random > 0) base.insert(base.end(), {"--then-random", std::to_string(request.random)});
+  base.insert(base.end(), {"--seed", std::to_string(request.seed), "--backpressure",
+                           fmt::format("{}", request.backpressure), "--design", request.design});
+  if (!request.rtl_cache.empty()) base.insert(base.end(), {"--rtl-cache", request.rtl_cache});
+  std::istringstream settings(describe(request.widths));
+  for (std::string setting; settings >> setting;) base.insert(base.end(), {"--set", setting});
+  fmt::print("verify: {} shards at once (cdsim regress --shard I/{}; the first to start builds the unit)\n", count,
+             count);
+  std::fflush(stdout);
+  std::vector<std::unique_ptr<ChildProcess>> children;
+  for (unsigned i = 0; i < count; ++i) {
+    std::vector<std::string> argv = base;
+    argv.insert(argv.end(), {"--shard", fmt::format("{}/{}", i + 1, count), "--json",
+                             (folder / fmt::format("{}.json", i)).string()});
+    children.push_back(std::make_unique<ChildProcess>(argv, folder / fmt::format("{}.log", i)));
+  }
+  std::vector<int> status(count, -1);
+  const auto start = std::chrono::steady_clock::now();
+  double next_line = 10;
+  for (unsigned left = count; left > 0;) {
+    if (interrupted()) {
+      for (auto& child : children) child->stop();
+      throw_if_interrupted();
+    }
+    left = 0;
+    for (unsigned i = 0; i < count; ++i)
+      if (status[i] < 0 && !children[i]->finished(status[i])) {
+        status[i] = -1;
+        ++left;
+      }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (left > 0 && seconds >= next_line) {
+      fmt::print(stderr, "verify: {} of {} shards done, {:.0f} s\n", count - left, count, seconds);
+      next_line = seconds + 10;
+    }
+    if (left > 0) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  // What the run was (the first shard's source, widths and unit: the same in
+  // every shard), then each shard's share and summary.
+  const auto lines_of = [&](unsigned i) {
+    std::vector<std::string> lines;
+    const fs::path log = folder / fmt::format("{}.log", i);
+    std::string line;
+    for (std::istringstream in(fs::exists(log) ? read_text_file(log) : std::string()); std::getline(in, line);)
+      lines.push_back(line);
+    return lines;
+  };
+  const auto starts = [](const std::string& line, const char* prefix) { return line.rfind(prefix, 0) == 0; };
+  for (const std::string& line : lines_of(0))
+    if (starts(line, "source:") || starts(line, "widths:") || starts(line, "design:") || starts(line, "unit:"))
+      fmt::print("{}\n", line);
+  for (unsigned i = 0; i < count; ++i)
+    for (const std::string& line : lines_of(i))
+      if (starts(line, "shard ") || line.find(" fragments compared, ") != std::string::npos) fmt::print("  {}\n", line);
+  int64_t triangles = 0, fragments = 0, mismatches = 0, hangs = 0, rtl_cycles = 0, model_cycles = 0;
+  int result = 0;
+  for (unsigned i = 0; i < count; ++i) {
+    const fs::path log = folder / fmt::format("{}.log", i), json = folder / fmt::format("{}.json", i);
+    const bool exited = WIFEXITED(status[i]);
+    if (!exited || WEXITSTATUS(status[i]) != 0 || !fs::exists(json)) {
+      const std::vector<std::string> lines = lines_of(i);
+      std::cerr << fmt::format("verify: shard {}/{} ended with {}; the end of its output:\n", i + 1, count,
+                               describe_status(status[i]));
+      for (size_t k = lines.size() > 30 ? lines.size() - 30 : 0; k < lines.size(); ++k) std::cerr << lines[k] << '\n';
+      result = exited && WEXITSTATUS(status[i]) == 1 ? std::max(result, 1) : 2;
+      if (!fs::exists(json)) continue;
+    }
+    const nlohmann::json j = nlohmann::json::parse(read_text_file(json));
+    triangles += j.at("triangles").get<int64_t>();
+    fragments += j.at("fragments").get<int64_t>();
+    mismatches += j.at("mismatches").get<int64_t>();
+    hangs += j.at("hangs").get<int64_t>();
+    rtl_cycles += j.at("rtl_cycles").get<int64_t>();
+    model_cycles += j.at("model_cycles").get<int64_t>();
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  fmt::print("verify: {} triangles in {} shards, {} fragments compared, {} mismatches, {} hangs, RTL cycles {}, "
+             "model cycles {}, {:.0f} s\n",
+             triangles, count, fragments, mismatches, hangs, rtl_cycles, model_cycles, seconds);
+  if (result == 0 && (mismatches > 0 || hangs > 0)) result = 1;
+  return result;
+}
+
+}  // namespace
+
 int verify_widths(const VerifyRequest& request) {
+  if (request.scenes.empty()) throw std::invalid_argument("verify: no scene");
+  if (request.jobs > 1) return verify_in_shards(request);
   options = RegressOptions{};
   if (request.scenes.empty()) throw std::invalid_argument("verify: no scene");
   options.scene = request.scenes.front();

@@ -30,7 +30,8 @@ struct RegressOptions {
   std::vector<std::string> settings;  // NAME=VALUE on top of `widths`
   std::string rtl_cache;              // folder of the RTL units verilated on first use
   bool scene_and_random = false;      // the scene, then `random` triangles (size --verify)
-  std::vector<std::string> more_scenes;  // after `scene`, in the same stream (choose's check)
+  std::vector<std::string> more_scenes;  // after `scene`, in the same stream (choose's check; --then-scene)
+  size_t then_random = 0;             // --then-random N: scene_and_random with random = N
   std::string shard;                  // "I/N": every N-th triangle from the I-th (cdsim merge joins them)
   std::string json_path;              // the summary as JSON
   std::string coverage_dir;           // coverage data and report (regress --coverage)
@@ -99,6 +100,9 @@ struct VerifyRequest {
   uint64_t seed = 1;
   double backpressure = 0.3;
   std::string rtl_cache;  // empty: the default cache folder
+  // Shards run at once, each a `cdsim regress --shard I/N` of this process's
+  // executable (SystemC elaborates one bench a process); 1: in this process.
+  unsigned jobs = 1;
 };
 int verify_widths(const VerifyRequest& request);
 
