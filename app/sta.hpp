@@ -28,7 +28,7 @@ struct StaReport {
 };
 
 // Times `netlists` (structural Verilog of the liberty's cells, as Yosys's
-// write_verilog -noattr -noexpr gives it; the first is named in errors) with
+// write_verilog -noattr -noexpr, or app/netlist_writer.cpp, gives it; the first is named in errors) with
 // `top` as the design and an ideal clock on port `clock`. A cell that none
 // defines is an error, not a black box. Inputs and outputs carry no delay, so only
 // paths from a flip-flop to a flip-flop are timed. Writes sta.tcl and sta.log

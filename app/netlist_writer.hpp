@@ -1,0 +1,28 @@
+// The mapped netlist OpenSTA times, written from Yosys's JSON (write_json)
+// rather than by Yosys's write_verilog: Yosys 0.23's write_verilog spends most
+// of a synthesis's time escaping names (it rebuilds its keyword table for every
+// identifier: Yosys issue #3845, fixed in 0.32), 56 s of 140 at narrow widths,
+// where write_json takes about a second. Structural Verilog only: one module
+// per Yosys module, scalar nets, named pin connections, assigns for output
+// ports that are constants or other ports' nets.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace cdsim {
+
+// Structural Verilog of every module of a Yosys JSON netlist (blackboxes left
+// out). Private (hidden) cell and net names become _c<N>_ and _n<N>_; public
+// ones keep their names, escaped where Verilog needs it. Throws
+// std::runtime_error on a netlist it cannot write (a cell type still a Yosys
+// internal cell, a bit of unknown kind).
+std::string verilog_from_yosys_json(const nlohmann::json& netlist);
+
+// Reads `json_path` (write_json's output) and writes `verilog_path`.
+void write_verilog_from_yosys_json(const std::filesystem::path& json_path,
+                                   const std::filesystem::path& verilog_path);
+
+}  // namespace cdsim
