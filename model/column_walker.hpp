@@ -74,14 +74,23 @@ inline int walker_bits(const Widths& w) {
   return (t > s ? t : s) + 2 + (w.out_frac > frac ? w.out_frac - frac : 0);
 }
 inline bool walker_fits_64(const Widths& w) { return walker_bits(w) <= 63; }
+// The alignment of T and S to the accumulator's fraction bits, computed once
+// for a set of widths. Multiplications, not shifts: left-shifting a negative
+// value is undefined in C++17.
+template <class Int>
+struct LineScale {
+  Int t_scale, s_scale;
+  explicit LineScale(const Widths& w)
+      : t_scale(Int{1} << (accumulator_frac(w) - w.t_frac)), s_scale(Int{1} << (accumulator_frac(w) - w.s_frac)) {}
+};
+template <class Int>
+inline LineValueOf<Int> line_value(const TableEntry& e, int64_t offset, const LineScale<Int>& scale) {
+  return {Int{e.t_u} * scale.t_scale + Int{offset} * (Int{e.s_u} * scale.s_scale),
+          Int{e.t_v} * scale.t_scale + Int{offset} * (Int{e.s_v} * scale.s_scale)};
+}
 template <class Int = int64_t>
 inline LineValueOf<Int> line_value(const TableEntry& e, int64_t offset, const Widths& w) {
-  const int frac = accumulator_frac(w);
-  const int t_align = frac - w.t_frac, s_align = frac - w.s_frac;
-  // Multiplications, not shifts: left-shifting a negative value is undefined in C++17.
-  const Int t_scale = Int{1} << t_align, s_scale = Int{1} << s_align;
-  return {Int{e.t_u} * t_scale + Int{offset} * (Int{e.s_u} * s_scale),
-          Int{e.t_v} * t_scale + Int{offset} * (Int{e.s_v} * s_scale)};
+  return line_value(e, offset, LineScale<Int>(w));
 }
 
 }  // namespace cdsim

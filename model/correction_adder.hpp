@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <type_traits>
 
 #include "column_walker.hpp"
 #include "design.hpp"
@@ -19,22 +20,45 @@ struct CorrectedValue {
   bool saturated = false;
 };
 
+// The formats the correction adder works in, computed once for a set of
+// widths (the model's pixel loop keeps them in registers).
+struct CorrectionFormat {
+  int d_frac;      // fraction bits of the weight |d|
+  int shift;       // accumulator to output fraction bits
+  int64_t out_hi;  // the output format's largest value (its smallest is -out_hi - 1)
+  explicit CorrectionFormat(const Widths& w)
+      : d_frac(w.d_frac),
+        shift(accumulator_frac(w) - w.out_frac),
+        out_hi((int64_t{1} << (w.out_int + w.out_frac - 1)) - 1) {}
+};
+
 // own + round(weight (other - own) 2^-d_frac), narrowed to the output format.
 // Without a neighbour pass the same value twice.
 template <class Int>
 inline CorrectedValue linear_correction(const LineValueOf<Int>& own, const LineValueOf<Int>& neighbour,
-                                        int64_t weight, const Widths& w) {
+                                        int64_t weight, const CorrectionFormat& f) {
   const auto correct = [&](Int a, Int b) {
     if (a == b) return a;
-    return a + static_cast<Int>(fx::shift_round(fx::Wide{weight} * (b - a), w.d_frac,
+    if constexpr (std::is_same_v<Int, int64_t>) {
+      // Neighbouring lines differ little: the product nearly always fits 64
+      // bits, and then rounds as the 128-bit one does (d_frac is 1 .. 24).
+      int64_t p;
+      if (!__builtin_sub_overflow(b, a, &p) && !__builtin_mul_overflow(weight, p, &p) &&
+          !__builtin_add_overflow(p, int64_t{1} << (f.d_frac - 1), &p))
+        return a + (p >> f.d_frac);
+    }
+    return a + static_cast<Int>(fx::shift_round(fx::Wide{weight} * (b - a), f.d_frac,
                                                 fx::Round::Nearest));
   };
-  const int shift = accumulator_frac(w) - w.out_frac;
-  const int64_t hi = (int64_t{1} << (w.out_int + w.out_frac - 1)) - 1;
   CorrectedValue out;
-  out.u = fx::narrow_nearest_saturate(correct(own.u, neighbour.u), shift, -hi - 1, hi, &out.saturated);
-  out.v = fx::narrow_nearest_saturate(correct(own.v, neighbour.v), shift, -hi - 1, hi, &out.saturated);
+  out.u = fx::narrow_nearest_saturate(correct(own.u, neighbour.u), f.shift, -f.out_hi - 1, f.out_hi, &out.saturated);
+  out.v = fx::narrow_nearest_saturate(correct(own.v, neighbour.v), f.shift, -f.out_hi - 1, f.out_hi, &out.saturated);
   return out;
+}
+template <class Int>
+inline CorrectedValue linear_correction(const LineValueOf<Int>& own, const LineValueOf<Int>& neighbour,
+                                        int64_t weight, const Widths& w) {
+  return linear_correction(own, neighbour, weight, CorrectionFormat(w));
 }
 
 // cd-persp: the perspective-correct weight t' = |d| (1 + e) / (1 + |d| e)
@@ -101,18 +125,20 @@ struct CorrectedFragment {
 // One pixel: its own entry and, when correct (a design with correction and a
 // pixel off its line), the neighbour entry, which lies toward direction. With
 // persp the weight is the perspective-correct one (persp_weight).
+// The same with the entries' line values (line_value at this column) given:
+// the model's walk reuses a line's value for the next pixel.
 template <class Int>
-inline CorrectedFragment correction_adder_in(const TableEntry& own_entry,
-                                             const TableEntry* neighbour_entry, int64_t offset,
-                                             int64_t weight, int direction, bool persp,
-                                             const Widths& w) {
+inline CorrectedFragment correct_line_values(const TableEntry& own_entry, const LineValueOf<Int>& own,
+                                             const TableEntry* neighbour_entry,
+                                             const LineValueOf<Int>& neighbour, int64_t weight,
+                                             int direction, bool persp, const Widths& w,
+                                             const CorrectionFormat& format) {
   CorrectedFragment out;
   out.flags = own_entry.flags;
-  const LineValueOf<Int> own = line_value<Int>(own_entry, offset, w);
   LineValueOf<Int> other = own;
   if (neighbour_entry) {
     if (neighbour_entry->flags == 0) {
-      other = line_value<Int>(*neighbour_entry, offset, w);
+      other = neighbour;
       if (persp) {
         weight = persp_weight(weight, direction, own_entry.eps, w);
         if (own_entry.eps_saturated) out.flags |= flag::kTableSaturated;
@@ -121,9 +147,22 @@ inline CorrectedFragment correction_adder_in(const TableEntry& own_entry,
       out.flags |= flag::kNeighbourDropped;
     }
   }
-  out.value = linear_correction(own, other, weight, w);
+  out.value = linear_correction(own, other, weight, format);
   if (out.value.saturated) out.flags |= flag::kOutputSaturated;
   return out;
+}
+
+template <class Int>
+inline CorrectedFragment correction_adder_in(const TableEntry& own_entry,
+                                             const TableEntry* neighbour_entry, int64_t offset,
+                                             int64_t weight, int direction, bool persp,
+                                             const Widths& w) {
+  const LineValueOf<Int> own = line_value<Int>(own_entry, offset, w);
+  return correct_line_values<Int>(own_entry, own, neighbour_entry,
+                                  neighbour_entry && neighbour_entry->flags == 0
+                                      ? line_value<Int>(*neighbour_entry, offset, w)
+                                      : own,
+                                  weight, direction, persp, w, CorrectionFormat(w));
 }
 
 // 64-bit arithmetic where the widths allow it (every configuration but the

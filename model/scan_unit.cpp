@@ -1,7 +1,9 @@
 #include "scan_unit.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cstdlib>
+#include <limits>
 
 #include "column_walker.hpp"
 #include "correction_adder.hpp"
@@ -92,6 +94,70 @@ Fragment make_fragment(const Setup& s, const ColumnState& c, int64_t minor,
 
 }  // namespace
 
+// One column's pixels in a band: each reads its own line and, when corrected,
+// the neighbour toward direction. Consecutive pixels read lines `density`
+// apart, so a line's value T_k + o S_k (fixed for the column) is often the
+// previous pixel's other line: it is kept rather than computed again.
+template <class Int>
+void ScanUnit::walk_column(const Setup& s, const ColumnState& c, const Span& pixels, int64_t band_base,
+                           std::vector<Fragment>* fragments, TriangleRecord* record) {
+  const int64_t count = span_pixels(pixels);
+  if (count == 0) return;
+  const bool correct = s.correction && c.direction != 0;
+  const LineScale<Int> scale(widths_);
+  const CorrectionFormat format(widths_);
+  // The bank row read first: the own line, or the neighbour above it.
+  const int64_t top_bias = (correct && c.direction > 0 ? 1 : 0) - band_base;
+  struct Known {
+    int64_t line;
+    LineValueOf<Int> value;
+  };
+  std::array<Known, 2> known{{{std::numeric_limits<int64_t>::min(), {}}, {std::numeric_limits<int64_t>::min(), {}}}};
+  const auto value_of = [&](int64_t line, const TableEntry& entry) {
+    for (const Known& k : known)
+      if (k.line == line) return k.value;
+    known[1] = known[0];
+    known[0] = {line, line_value<Int>(entry, c.offset, scale)};
+    return known[0].value;
+  };
+  // Grown once per column (geometrically), filled by index: no capacity
+  // check per pixel.
+  work_.read_tops.resize(work_.read_tops.size() + static_cast<size_t>(count));
+  int32_t* top = work_.read_tops.data() + work_.read_tops.size() - count;
+  fragments->resize(fragments->size() + static_cast<size_t>(count));
+  Fragment* f = fragments->data() + fragments->size() - count;
+  // Lines grow with minor (density > 0): the column reads first .. last.
+  const int64_t below = correct ? std::min(0, c.direction) : 0, above = correct ? std::max(0, c.direction) : 0;
+  const int64_t first = line_index(s, c, pixels.lo) + below;  // line_index: density (minor - minor_lo) - r
+  const TableEntry* rows = table_.read_lines(first, line_index(s, c, pixels.hi) + above);
+  // Locals: the stores below could alias the setup's and column's fields.
+  const int64_t density = s.density, direction = c.direction, weight = c.weight;
+  const int64_t line_lo = line_index(s, c, pixels.lo);
+  const bool persp = s.persp, x_major = s.x_major;
+  const int32_t major = static_cast<int32_t>(c.major);
+  uint32_t flags = 0;
+  for (int64_t minor = pixels.lo, line = line_lo; minor <= pixels.hi; ++minor, line += density, ++top, ++f) {
+    *top = static_cast<int32_t>(line + top_bias);
+    const TableEntry& own = rows[line - first];
+    const LineValueOf<Int> own_value = value_of(line, own);
+    const TableEntry* neighbour = correct ? &rows[line + direction - first] : nullptr;
+    const LineValueOf<Int> neighbour_value =
+        neighbour && neighbour->flags == 0 ? value_of(line + direction, *neighbour) : own_value;
+    const CorrectedFragment out = correct_line_values<Int>(own, own_value, neighbour, neighbour_value, weight,
+                                                           static_cast<int>(direction), persp, widths_, format);
+    // Field by field: a Fragment assembled on the stack and copied stalls on
+    // store forwarding (it was a third of the model's time).
+    f->x = x_major ? major : static_cast<int32_t>(minor);
+    f->y = x_major ? static_cast<int32_t>(minor) : major;
+    f->u = out.value.u;
+    f->v = out.value.v;
+    f->flags = out.flags;
+    flags |= out.flags;
+  }
+  record->flags |= flags;
+  record->pixels += count;
+}
+
 TriangleRecord ScanUnit::run_constant_depth(const Setup& s, std::vector<Fragment>* fragments) {
   TriangleRecord record;
   if (s.pixel_line_lo > s.pixel_line_hi) {
@@ -122,18 +188,10 @@ TriangleRecord ScanUnit::run_constant_depth(const Setup& s, std::vector<Fragment
       const ColumnState c = walker.column();
       const Span pixels = clip_to_band(s, c, band_lo, band_hi);
       work_.column_pixels.push_back(span_pixels(pixels));
-      for (int64_t minor = pixels.lo; minor <= pixels.hi; ++minor) {
-        const int64_t line = line_index(s, c, minor);
-        const bool correct = s.correction && c.direction != 0;
-        work_.read_tops.push_back(static_cast<int32_t>(line - (band_lo - guard) + (correct && c.direction > 0 ? 1 : 0)));
-        const CorrectedFragment out =
-            correction_adder(table_.read(line), correct ? &table_.read(line + c.direction) : nullptr,
-                             c.offset, c.weight, c.direction, s.persp, widths_);
-        fragments->push_back(make_fragment(s, c, minor, out.value));
-        fragments->back().flags = out.flags;
-        record.flags |= out.flags;
-        ++record.pixels;
-      }
+      if (walker_fits_64(widths_))
+        walk_column<int64_t>(s, c, pixels, band_lo - guard, fragments, &record);
+      else
+        walk_column<fx::Wide>(s, c, pixels, band_lo - guard, fragments, &record);
     }
   }
   if (record.bands > 1) record.flags |= flag::kBanded;

@@ -80,6 +80,9 @@ class ScanUnit {
 
  private:
   TriangleRecord run_constant_depth(const struct Setup& setup, std::vector<Fragment>* fragments);
+  template <class Int>
+  void walk_column(const struct Setup& setup, const struct ColumnState& column, const struct Span& pixels,
+                   int64_t band_base, std::vector<Fragment>* fragments, TriangleRecord* record);
   TriangleRecord run_divide(const struct Setup& setup, std::vector<Fragment>* fragments);
   TriangleRecord run_kim(const struct Setup& setup, std::vector<Fragment>* fragments);
   TriangleRecord run_affine(const UnitTriangle& triangle, const struct Setup& setup,

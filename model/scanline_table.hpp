@@ -27,6 +27,12 @@ class ScanlineTable {
     high_water_ = std::max(high_water_, used_);
   }
   const TableEntry& read(int64_t line) const { return entries_[address(line)]; }
+  // Lines first .. last of the current band, checked once: entry k is at
+  // [k - first].
+  const TableEntry* read_lines(int64_t first, int64_t last) const {
+    address(last);
+    return &entries_[address(first)];
+  }
 
   int depth() const { return static_cast<int>(entries_.size()); }
   int64_t high_water() const { return high_water_; }
