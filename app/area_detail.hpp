@@ -107,7 +107,7 @@ std::string block_of_pin(const std::map<std::string, std::string>& instance_modu
 AreaReport area_report(const Design& design, const Widths& widths, const UnitConfig& config,
                        const nlohmann::json& synthesised, const AreaOptions& options);
 // Runs Yosys on each script at once (-q -l log -s script), each in a process
-// group of its own (model/child_process.hpp); SIGINT or SIGTERM stops them
+// group of its own (support/child_process.hpp); SIGINT or SIGTERM stops them
 // and throws Interrupted. Throws "yosys failed WHAT: ERROR (LOG)" for the
 // first that fails.
 struct YosysRun {

@@ -2,7 +2,7 @@
 
 #include <array>
 
-#include "coverage.hpp"
+#include "pixel_coverage.hpp"
 #include "design.hpp"
 #include "fixed.hpp"
 #include "setup_engine.hpp"

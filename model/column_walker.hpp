@@ -5,7 +5,7 @@
 
 #include <cstdint>
 
-#include "coverage.hpp"
+#include "pixel_coverage.hpp"
 #include "fixed.hpp"
 #include "setup_engine.hpp"
 

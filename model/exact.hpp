@@ -5,7 +5,7 @@
 
 #include <array>
 
-#include "coverage.hpp"
+#include "pixel_coverage.hpp"
 #include "triangle.hpp"
 
 namespace cdsim {

@@ -7,7 +7,7 @@
 #include <array>
 #include <cstdint>
 
-#include "coverage.hpp"
+#include "pixel_coverage.hpp"
 #include "derived_widths.hpp"
 #include "design.hpp"
 #include "fixed.hpp"

@@ -2,7 +2,7 @@
 // shift r(o) = round(m g o), the distance t to the line as a direction and a
 // correction weight, and the covered pixels of the column clipped to the box and
 // to the lines of the current band. Twin of model/column_walker.cpp and of
-// covered_span in model/coverage.cpp, without a divider: m g o and each edge's
+// covered_span in model/pixel_coverage.cpp, without a divider: m g o and each edge's
 // span end are accumulated from column to column.
 //
 // An edge's span end is floor(N / S) for the edge value N at the column's pixel

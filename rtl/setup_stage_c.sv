@@ -165,7 +165,7 @@ module setup_stage_c #(
       g_div_num = GDivNumBits'(g_numerator < 0 ? -g_numerator : g_numerator);
       g_div_den = GDivDenBits'(q_minor < 0 ? -q_minor : q_minor) << 1;
 
-      // Edge i at the first column: N0 = E - threshold there (model/coverage.cpp
+      // Edge i at the first column: N0 = E - threshold there (model/pixel_coverage.cpp
       // covered_span), divided by |free| 2^sp as (N0 >> sp) / |free|.
       for (int i = 0; i < 3; i++) begin
         edge_free_abs[i] = FreeBits'(edge_free[i] < 0 ? -edge_free[i] : edge_free[i]);

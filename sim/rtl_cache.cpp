@@ -27,7 +27,7 @@
 // mismatch is said, naming the file, and the entry rebuilt. A failed or
 // interrupted build leaves no tmp- folder: its logs go to failed-<model key>/,
 // and SIGINT or SIGTERM stops Verilator and the compilers as process groups
-// (model/child_process.hpp).
+// (support/child_process.hpp).
 //
 // The model key is FNV-1a 64 of the header, every rtl/*.sv, Verilator's binary,
 // version and arguments (the unit's -G parameters among them), and the

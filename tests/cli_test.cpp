@@ -1,6 +1,6 @@
 // The command line, sweep files, output files and the interrupt flag
-// (app/cli.cpp, cli_checks.cpp, sweep_file.cpp, model/cache_files.cpp,
-// model/interrupt.cpp): bad input is refused naming the option and the value
+// (app/cli.cpp, cli_checks.cpp, sweep_file.cpp, support/cache_files.cpp,
+// support/interrupt.cpp): bad input is refused naming the option and the value
 // or the file and line; outputs are whole or absent; a folder takes one run
 // at a time; a signal stops with 128 + its number.
 #include <fcntl.h>

@@ -16,7 +16,7 @@
 #include <set>
 #include <sstream>
 
-#include "coverage.hpp"
+#include "pixel_coverage.hpp"
 #include "evaluate.hpp"
 #include "loaders/bsp.hpp"
 #include "loaders/file_io.hpp"

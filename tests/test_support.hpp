@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "coverage.hpp"
+#include "pixel_coverage.hpp"
 #include "exact.hpp"
 #include "scan_unit.hpp"
 #include "setup_engine.hpp"

@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "coverage.hpp"
+#include "pixel_coverage.hpp"
 #include "evaluate.hpp"
 #include "exact.hpp"
 #include "gl_render.hpp"

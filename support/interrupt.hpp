@@ -1,6 +1,6 @@
 // SIGINT and SIGTERM for the long commands (run, sweep, render, size, bench,
 // regress, area, choose, area-model; the tools of cache builds are stopped by
-// model/child_process.hpp). The handler only records the signal; the loops that take time
+// support/child_process.hpp). The handler only records the signal; the loops that take time
 // poll interrupted() (a relaxed atomic load, cheap enough once per triangle)
 // and stop by throwing Interrupted, so every file is either written whole or
 // not at all. main() turns it into a message and exit status 128 + signal

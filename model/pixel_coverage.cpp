@@ -1,4 +1,4 @@
-#include "coverage.hpp"
+#include "pixel_coverage.hpp"
 
 #include <algorithm>
 #include <limits>
