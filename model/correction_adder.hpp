@@ -7,6 +7,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <type_traits>
 
@@ -73,10 +74,26 @@ inline CorrectedValue linear_correction(const LineValueOf<Int>& own, const LineV
 // gives the bounds. Twin of rtl/correction_adder.sv.
 
 // Entry i of the table: 1 / (1 + i / K) at persp_frac bits, i = 0 .. K.
-inline int64_t persp_table_entry(int64_t i, const Widths& w) {
-  const int64_t k = int64_t{1} << w.persp_table_log2;
+inline int64_t persp_table_entry_of(int64_t i, int persp_frac, int persp_table_log2) {
+  const int64_t k = int64_t{1} << persp_table_log2;
   // round(2^pf K / (K + i)), ties up.
-  return static_cast<int64_t>(((fx::Wide{k} << (w.persp_frac + 1)) / (k + i) + 1) / 2);
+  return static_cast<int64_t>(((fx::Wide{k} << (persp_frac + 1)) / (k + i) + 1) / 2);
+}
+inline int64_t persp_table_entry(int64_t i, const Widths& w) {
+  // The table for the last widths asked, kept per thread: two 128-bit
+  // divisions a pixel were a tenth of cd-persp's time.
+  constexpr int kMaxLog2 = 8;  // widths.def: persp_table_log2 <= 8
+  thread_local int frac = -1, log2 = -1;
+  thread_local std::array<int64_t, (1 << kMaxLog2) + 1> table{};
+  if (w.persp_table_log2 > kMaxLog2 || i < 0 || i > (int64_t{1} << w.persp_table_log2))
+    return persp_table_entry_of(i, w.persp_frac, w.persp_table_log2);
+  if (frac != w.persp_frac || log2 != w.persp_table_log2) {
+    for (int64_t j = 0; j <= (int64_t{1} << w.persp_table_log2); ++j)
+      table[static_cast<size_t>(j)] = persp_table_entry_of(j, w.persp_frac, w.persp_table_log2);
+    frac = w.persp_frac;
+    log2 = w.persp_table_log2;
+  }
+  return table[static_cast<size_t>(i)];
 }
 
 // 1 / (1 + x) = reciprocal 2^-shift for x in [-1/2, 2^(eps_int - 2)), both

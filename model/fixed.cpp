@@ -58,14 +58,4 @@ double to_double(Wide raw, int frac_bits) {
   return static_cast<double>(std::ldexp(static_cast<long double>(raw), -frac_bits));
 }
 
-int bit_length(Wide x) {
-  if (x < 0) x = -x;
-  int bits = 0;
-  while (x != 0) {
-    x >>= 1;
-    ++bits;
-  }
-  return bits;
-}
-
 }  // namespace cdsim::fx

@@ -50,8 +50,15 @@ Wide from_double(double value, const Format& format, Round round, Overflow overf
 
 double to_double(Wide raw, int frac_bits);
 
-// Number of bits needed to write |x| (0 for x == 0).
-int bit_length(Wide x);
+// Number of bits needed to write |x| (0 for x == 0), by counting leading
+// zeros, as a priority encoder would.
+inline int bit_length(Wide x) {
+  __extension__ typedef unsigned __int128 UWide;
+  const UWide magnitude = x < 0 ? UWide{0} - static_cast<UWide>(x) : static_cast<UWide>(x);
+  const auto high = static_cast<uint64_t>(magnitude >> 64), low = static_cast<uint64_t>(magnitude);
+  if (high != 0) return 128 - __builtin_clzll(high);
+  return low != 0 ? 64 - __builtin_clzll(low) : 0;
+}
 
 // Floor division for any signs (C++ '/' truncates toward zero).
 Wide floor_div(Wide numerator, Wide denominator);
@@ -82,7 +89,6 @@ Wide wrap(Wide raw, const Format& format);
 // Wrapping raw * 2^shift when the product would not fit 128 bits: only its low
 // bits matter, so shift the low 64 bits of raw (formats are at most 62 bits).
 Wide wrap_huge_left_shift(Wide raw, int shift, const Format& format, bool* overflowed);
-int bit_length(Wide x);
 
 // Inline because they sit on the walker's per-pixel path.
 inline Wide Format::max_raw() const {
