@@ -94,6 +94,18 @@ Fragment make_fragment(const Setup& s, const ColumnState& c, int64_t minor,
 
 }  // namespace
 
+// The walk of the designs without a table: every column of the box once, its
+// covered span recorded for the timing layer, then `pixel(column, offset)`.
+template <class ColumnVisitor>
+void ScanUnit::walk_columns(const Setup& s, ColumnVisitor&& visit) {
+  ColumnWalker walker(s, widths_);
+  for (int64_t offset = 0; offset < s.major_count; ++offset, walker.advance()) {
+    const ColumnState c = walker.column();
+    work_.column_pixels.push_back(span_pixels(c.span));
+    visit(c, offset);
+  }
+}
+
 // One column's pixels in a band: each reads its own line and, when corrected,
 // the neighbour toward direction. Consecutive pixels read lines `density`
 // apart, so a line's value T_k + o S_k (fixed for the column) is often the
@@ -200,27 +212,20 @@ TriangleRecord ScanUnit::run_constant_depth(const Setup& s, std::vector<Fragment
 
 TriangleRecord ScanUnit::run_divide(const Setup& s, std::vector<Fragment>* fragments) {
   TriangleRecord record;
-  ColumnWalker walker(s, widths_);
-  for (int64_t offset = 0; offset < s.major_count; ++offset, walker.advance()) {
-    const ColumnState c = walker.column();
-    work_.column_pixels.push_back(span_pixels(c.span));
+  walk_columns(s, [&](const ColumnState& c, int64_t offset) {
     for (int64_t minor = c.span.lo; minor <= c.span.hi; ++minor) {
-      const CorrectedValue value =
-          divide_pixel(s, offset, minor - s.minor_lo, widths_, &record.flags);
+      const CorrectedValue value = divide_pixel(s, offset, minor - s.minor_lo, widths_, &record.flags);
       fragments->push_back(make_fragment(s, c, minor, value));
       record.flags |= fragments->back().flags;
       ++record.pixels;
     }
-  }
+  });
   return record;
 }
 
 TriangleRecord ScanUnit::run_kim(const Setup& s, std::vector<Fragment>* fragments) {
   TriangleRecord record;
-  ColumnWalker walker(s, widths_);
-  for (int64_t offset = 0; offset < s.major_count; ++offset, walker.advance()) {
-    const ColumnState c = walker.column();
-    work_.column_pixels.push_back(span_pixels(c.span));
+  walk_columns(s, [&](const ColumnState& c, int64_t offset) {
     KimPixel previous;
     for (int64_t minor = c.span.lo; minor <= c.span.hi; ++minor) {
       const bool first = minor == c.span.lo;
@@ -235,7 +240,7 @@ TriangleRecord ScanUnit::run_kim(const Setup& s, std::vector<Fragment>* fragment
       record.flags |= fragments->back().flags;
       ++record.pixels;
     }
-  }
+  });
   return record;
 }
 
@@ -245,11 +250,8 @@ TriangleRecord ScanUnit::run_affine(const UnitTriangle& triangle, const Setup& s
   const int64_t segment = design_.subdivision;
   const AffinePlanes planes = affine_setup(triangle, s, widths_);
   const fx::Format exact_format = affine_format(widths_);
-  ColumnWalker walker(s, widths_);
-  for (int64_t offset = 0; offset < s.major_count; ++offset, walker.advance()) {
-    const ColumnState c = walker.column();
-    work_.column_pixels.push_back(span_pixels(c.span));
-    if (c.span.empty()) continue;
+  walk_columns(s, [&](const ColumnState& c, int64_t offset) {
+    if (c.span.empty()) return;
     const int64_t length = c.span.hi - c.span.lo + 1;
     if (segment == 0) {
       for (int64_t minor = c.span.lo; minor <= c.span.hi; ++minor) {
@@ -257,7 +259,7 @@ TriangleRecord ScanUnit::run_affine(const UnitTriangle& triangle, const Setup& s
         record.flags |= fragments->back().flags;
       }
       record.pixels += length;
-      continue;
+      return;
     }
     // Subdivided: an exact end point every N pixels, interpolated between.
     const auto exact_at = [&](int64_t minor) {
@@ -281,7 +283,7 @@ TriangleRecord ScanUnit::run_affine(const UnitTriangle& triangle, const Setup& s
         first += run;
         start = end;
       }
-      continue;
+      return;
     }
     CorrectedValue start = exact_at(c.span.lo);
     for (int64_t first = c.span.lo; first <= c.span.hi; first += segment) {
@@ -296,7 +298,7 @@ TriangleRecord ScanUnit::run_affine(const UnitTriangle& triangle, const Setup& s
       if (last == c.span.hi) break;
       start = end;
     }
-  }
+  });
   return record;
 }
 

@@ -80,6 +80,8 @@ class ScanUnit {
 
  private:
   TriangleRecord run_constant_depth(const struct Setup& setup, std::vector<Fragment>* fragments);
+  template <class ColumnVisitor>
+  void walk_columns(const struct Setup& setup, ColumnVisitor&& visit);
   template <class Int>
   void walk_column(const struct Setup& setup, const struct ColumnState& column, const struct Span& pixels,
                    int64_t band_base, std::vector<Fragment>* fragments, TriangleRecord* record);
