@@ -417,34 +417,23 @@ int verify_in_shards(const VerifyRequest& request) {
   fmt::print("verify: {} shards at once (cdsim regress --shard I/{}; the first to start builds the unit)\n", count,
              count);
   std::fflush(stdout);
-  std::vector<std::unique_ptr<ChildProcess>> children;
+  std::vector<ChildCommand> shards;
   for (unsigned i = 0; i < count; ++i) {
     std::vector<std::string> argv = base;
     argv.insert(argv.end(), {"--shard", fmt::format("{}/{}", i + 1, count), "--json",
                              (folder / fmt::format("{}.json", i)).string()});
-    children.push_back(std::make_unique<ChildProcess>(argv, folder / fmt::format("{}.log", i)));
+    shards.push_back({argv, folder / fmt::format("{}.log", i)});
   }
-  std::vector<int> status(count, -1);
   const auto start = std::chrono::steady_clock::now();
   double next_line = 10;
-  for (unsigned left = count; left > 0;) {
-    if (interrupted()) {
-      for (auto& child : children) child->stop();
-      throw_if_interrupted();
-    }
-    left = 0;
-    for (unsigned i = 0; i < count; ++i)
-      if (status[i] < 0 && !children[i]->finished(status[i])) {
-        status[i] = -1;
-        ++left;
-      }
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (left > 0 && seconds >= next_line) {
-      fmt::print(stderr, "verify: {} of {} shards done, {:.0f} s\n", count - left, count, seconds);
-      next_line = seconds + 10;
-    }
-    if (left > 0) std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  }
+  const std::vector<std::optional<int>> ended =
+      run_children(shards, count, /*stop_at_failure=*/false, [&](double seconds, size_t done) {
+        if (seconds < next_line) return;
+        fmt::print(stderr, "verify: {} of {} shards done, {:.0f} s\n", done, count, seconds);
+        next_line = seconds + 10;
+      });
+  std::vector<int> status;
+  for (const std::optional<int>& s : ended) status.push_back(s.value_or(-1));
   // What the run was (the first shard's source, widths and unit: the same in
   // every shard), then each shard's share and summary.
   const auto lines_of = [&](unsigned i) {

@@ -167,34 +167,18 @@ struct StepFailed {
 };
 
 // Runs the steps, up to `jobs` at a time; after a failure starts no more, waits
-// for those running and throws the first failure as StepFailed. SIGINT or
-// SIGTERM stops every running step's process group and throws Interrupted.
+// for those running and throws the first failure (in the steps' order) as
+// StepFailed. SIGINT or SIGTERM stops every running step's process group and
+// throws Interrupted.
 void run_steps(const std::vector<Step>& steps, size_t jobs) {
-  std::vector<std::pair<std::unique_ptr<ChildProcess>, size_t>> running;
-  std::optional<StepFailed> failure;
-  size_t next = 0;
-  while (!running.empty() || (!failure && next < steps.size())) {
-    while (!failure && next < steps.size() && running.size() < jobs) {
-      write_file_atomic(steps[next].log, "$ " + joined(steps[next].argv) + "\n");
-      running.emplace_back(std::make_unique<ChildProcess>(steps[next].argv, steps[next].log), next);
-      ++next;
-    }
-    throw_if_interrupted();  // the destructors stop what runs
-    bool any = false;
-    for (auto it = running.begin(); it != running.end();) {
-      int status = 0;
-      if (!it->first->finished(status)) {
-        ++it;
-        continue;
-      }
-      any = true;
-      if (!(WIFEXITED(status) && WEXITSTATUS(status) == 0) && !failure)
-        failure = StepFailed{steps[it->second], status};
-      it = running.erase(it);
-    }
-    if (!any) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  std::vector<ChildCommand> commands;
+  for (const Step& step : steps) {
+    write_file_atomic(step.log, "$ " + joined(step.argv) + "\n");
+    commands.push_back({step.argv, step.log});
   }
-  if (failure) throw *failure;
+  const std::vector<std::optional<int>> status = run_children(commands, jobs, /*stop_at_failure=*/true);
+  for (size_t i = 0; i < steps.size(); ++i)
+    if (status[i] && !(WIFEXITED(*status[i]) && WEXITSTATUS(*status[i]) == 0)) throw StepFailed{steps[i], *status[i]};
 }
 
 // Build times of the last builds in this cache, for the estimate printed first.

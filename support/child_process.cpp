@@ -11,9 +11,11 @@
 #include <fmt/format.h>
 
 #include <cerrno>
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
+#include <memory>
 #include <stdexcept>
 #include <thread>
 
@@ -203,6 +205,41 @@ int run_child(const std::vector<std::string>& argv, const fs::path& output) {
       throw_if_interrupted();
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return status;
+}
+
+std::vector<std::optional<int>> run_children(const std::vector<ChildCommand>& commands, size_t jobs,
+                                             bool stop_at_failure,
+                                             const std::function<void(double, size_t)>& waiting) {
+  std::vector<std::optional<int>> status(commands.size());
+  std::vector<std::pair<std::unique_ptr<ChildProcess>, size_t>> running;
+  const auto start = std::chrono::steady_clock::now();
+  bool failed = false;
+  size_t next = 0, ended = 0;
+  while (!running.empty() || (!(failed && stop_at_failure) && next < commands.size())) {
+    while (!(failed && stop_at_failure) && next < commands.size() && running.size() < std::max<size_t>(jobs, 1)) {
+      running.emplace_back(std::make_unique<ChildProcess>(commands[next].argv, commands[next].output), next);
+      ++next;
+    }
+    throw_if_interrupted();  // the destructors stop what runs
+    bool any = false;
+    for (auto it = running.begin(); it != running.end();) {
+      int s = 0;
+      if (!it->first->finished(s)) {
+        ++it;
+        continue;
+      }
+      any = true;
+      status[it->second] = s;
+      failed = failed || !(WIFEXITED(s) && WEXITSTATUS(s) == 0);
+      ++ended;
+      it = running.erase(it);
+    }
+    if (!any) {
+      if (waiting) waiting(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), ended);
+      std::this_thread::sleep_for(std::chrono::milliseconds(running.size() > 1 ? 100 : 20));
+    }
   }
   return status;
 }

@@ -14,6 +14,8 @@
 #include <sys/types.h>
 
 #include <filesystem>
+#include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -43,6 +45,20 @@ class ChildProcess {
 // Runs one tool to its end and returns its wait status. On SIGINT or SIGTERM
 // stops it within a tenth of a second and throws Interrupted.
 int run_child(const std::vector<std::string>& argv, const std::filesystem::path& output);
+
+// Several tools, up to `jobs` at a time, each with its output file. Returns
+// each one's wait status, in the commands' order; with stop_at_failure no
+// command starts after one has failed (their status stays empty). `waiting`,
+// if given, is called about every 100 ms with the seconds since the start and
+// the count of those that have ended. On SIGINT or SIGTERM stops every running
+// one and throws Interrupted.
+struct ChildCommand {
+  std::vector<std::string> argv;
+  std::filesystem::path output;
+};
+std::vector<std::optional<int>> run_children(const std::vector<ChildCommand>& commands, size_t jobs,
+                                             bool stop_at_failure,
+                                             const std::function<void(double, size_t)>& waiting = {});
 
 // The wait status as words: "exit 2", "signal 9".
 std::string describe_status(int status);

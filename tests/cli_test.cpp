@@ -10,6 +10,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <csignal>
 #include <cstdint>
 #include <cstdlib>
@@ -426,6 +427,36 @@ TEST(ChildProcess, StopEndsTheToolAndEverythingItStarted) {
   ASSERT_TRUE(fs::exists(marker));
   child.stop();
   EXPECT_FALSE(sleep_left(sleep)) << sleep << " outlived stop()";
+  fs::remove_all(dir);
+}
+
+// run_children: every status in the commands' order; after a failure either
+// none starts (the RTL cache's build steps) or all run (the sharded check).
+TEST(ChildProcess, RunChildrenGivesEveryStatusOrStopsAtAFailure) {
+  const fs::path dir = fresh_folder("children");
+  const std::vector<cdsim::ChildCommand> commands = {{{"sh", "-c", "exit 0"}, dir / "0.log"},
+                                                     {{"sh", "-c", "echo two; exit 3"}, dir / "1.log"},
+                                                     {{"sh", "-c", "sleep 0.3; touch " + (dir / "ran").string()},
+                                                      dir / "2.log"}};
+  const auto stopped = cdsim::run_children(commands, 1, /*stop_at_failure=*/true);
+  ASSERT_EQ(stopped.size(), 3u);
+  ASSERT_TRUE(stopped[0] && stopped[1]);
+  EXPECT_TRUE(WIFEXITED(*stopped[0]) && WEXITSTATUS(*stopped[0]) == 0);
+  EXPECT_TRUE(WIFEXITED(*stopped[1]) && WEXITSTATUS(*stopped[1]) == 3);
+  EXPECT_FALSE(stopped[2]) << "a command started after a failure";
+  EXPECT_FALSE(fs::exists(dir / "ran"));
+  EXPECT_EQ(cdsim::read_text_file(dir / "1.log"), "two\n");
+  size_t calls = 0, most_done = 0;
+  const auto all = cdsim::run_children(commands, 2, /*stop_at_failure=*/false, [&](double seconds, size_t done) {
+    EXPECT_GE(seconds, 0.0);
+    ++calls;
+    most_done = std::max(most_done, done);
+  });
+  ASSERT_TRUE(all[0] && all[1] && all[2]);
+  EXPECT_TRUE(WIFEXITED(*all[2]) && WEXITSTATUS(*all[2]) == 0);
+  EXPECT_TRUE(fs::exists(dir / "ran"));
+  EXPECT_GT(calls, 0u) << "no progress call while the 0.3 s command ran";
+  EXPECT_GE(most_done, 2u);
   fs::remove_all(dir);
 }
 
