@@ -82,10 +82,10 @@ AdaptiveSplit adaptive_split(const UnitTriangle& triangle, const Widths& w, int 
   }
 
   std::vector<Node> stack = {root};
-  int64_t cycles = 0;  // split-engine cycles since the last leaf was accepted
+  SplitEngineWork work;  // the split engine's since the last leaf was accepted
   const auto emit = [&](const Node& node) {
-    out.leaves.push_back({to_triangle(node), node.depth, cycles});
-    cycles = 0;
+    out.leaves.push_back({to_triangle(node), node.depth, work});
+    work = {};
   };
   while (!stack.empty()) {
     const Node node = stack.back();
@@ -95,7 +95,7 @@ AdaptiveSplit adaptive_split(const UnitTriangle& triangle, const Widths& w, int 
                          bounding_box(t, leaf_widths.subpixel_bits, viewport_width, viewport_height).empty();
     if (nothing && node.depth > 0) {
       // A sub-triangle's box holds no pixel centre: nothing to send.
-      cycles += kAdaptiveDropCycles;
+      ++work.drops;
       ++out.dropped;
       continue;
     }
@@ -105,7 +105,7 @@ AdaptiveSplit adaptive_split(const UnitTriangle& triangle, const Widths& w, int 
     }
     // Midpoint j lies on the edge opposite vertex j, between vertices j+1 and j+2.
     ++out.evaluations;
-    cycles += adaptive_evaluation_cycles(w);
+    ++work.evaluations;
     std::array<SplitVertex, 3> middle{};
     bool split = false;
     for (size_t j = 0; j < 3; ++j) {
@@ -145,7 +145,7 @@ AdaptiveSplit adaptive_split(const UnitTriangle& triangle, const Widths& w, int 
     // (its leaves would tile it): it goes to the unit whole, for its record.
     emit(root);
   }
-  out.tail_cycles = cycles;
+  out.tail = work;
   return out;
 }
 

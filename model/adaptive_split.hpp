@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "timing.hpp"
 #include "triangle.hpp"
 #include "widths.hpp"
 
@@ -21,31 +22,22 @@ namespace cdsim {
 struct AdaptiveLeaf {
   UnitTriangle triangle;  // at adaptive_leaf_widths
   int depth = 0;          // 0: the triangle itself
-  // Split-engine cycles from the cycle after the unit accepted the leaf before
-  // (for a triangle's first leaf: from its root node's first cycle) to the
-  // cycle this leaf is offered, not counting that cycle (docs/designs.md).
-  int64_t engine_cycles = 0;
+  // The split engine's work from the leaf before's acceptance (for a
+  // triangle's first leaf: from its root node's first cycle) to this leaf's
+  // offer; model/timing.hpp prices it (split_engine_cycles).
+  SplitEngineWork work;
 };
 
 struct AdaptiveSplit {
   std::vector<AdaptiveLeaf> leaves;  // depth first: corners A, B, C, then the middle
-  // Split-engine cycles after the last leaf's acceptance: the nodes dropped
-  // after it (empty boxes).
-  int64_t tail_cycles = 0;
+  // The split engine's work after the last leaf's acceptance: the nodes
+  // dropped after it (empty boxes).
+  SplitEngineWork tail;
   int64_t splits = 0;       // nodes split in four
   int64_t evaluations = 0;  // nodes whose midpoints were divided and tested
   int64_t dropped = 0;      // sub-triangles with no pixel centre in their box: never sent
   uint32_t flags = 0;       // kDepthRange (a 1/w of 0), kOutputSaturated (a midpoint's u or v)
 };
-
-// Split-engine timing (docs/designs.md): the cycles of the intake of a
-// triangle (1/w normalised, U = u q and V = v q), of one node's evaluation
-// (the midpoints; three reciprocals issued on one pipelined unit, each
-// result multiplied and narrowed in the cycle it arrives; the tests), and
-// of dropping a node with an empty box.
-inline constexpr int64_t kAdaptiveIntakeCycles = 2;
-inline int64_t adaptive_evaluation_cycles(const Widths& widths) { return 1 + 3 + widths.recip_latency + 1; }
-inline constexpr int64_t kAdaptiveDropCycles = 1;
 
 AdaptiveSplit adaptive_split(const UnitTriangle& triangle, const Widths& widths, int viewport_width,
                              int viewport_height);

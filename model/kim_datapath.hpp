@@ -29,11 +29,4 @@ struct KimPixel {
 KimPixel kim_pixel(const Setup& setup, int64_t major_offset, int64_t minor_offset,
                    const Widths& widths, const KimPixel* previous, uint32_t* flags);
 
-// Cycles of the integer stage for a pixel whose I moved by `steps`:
-// max(1, ceil(steps / kim_unroll)).
-inline int64_t kim_integer_cycles(int64_t steps, const Widths& w) {
-  const int64_t per_cycle = w.kim_unroll;
-  return steps <= per_cycle ? 1 : (steps + per_cycle - 1) / per_cycle;
-}
-
 }  // namespace cdsim

@@ -24,7 +24,8 @@ ScanUnit::ScanUnit(const Design& design, const Widths& widths, int viewport_widt
       viewport_height_(viewport_height),
       table_(widths.table_depth * design.density),
       timing_(design, widths),
-      schedule_(widths) {
+      schedule_(widths),
+      adaptive_schedule_(widths) {
   if (design.kind == Design::Kind::Adaptive)
     leaf_unit_ = std::make_unique<ScanUnit>(find_design("affine"), adaptive_leaf_widths(widths), viewport_width,
                                             viewport_height);
@@ -311,14 +312,11 @@ TriangleRecord ScanUnit::run_adaptive(const UnitTriangle& triangle, std::vector<
   TriangleRecord record;
   record.x_major = parent.x_major;
   record.flags = parent.flags | split.flags;
-  // The split engine accepts the triangle in `accepted`; its root node starts
-  // after the intake. Each leaf is offered after its engine cycles and the
-  // engine goes on in the cycle after the unit accepts it.
-  const int64_t accepted = split_free_;
-  int64_t cycle = accepted + kAdaptiveIntakeCycles;
+  // The leaves' clocks are the leaf unit's; what they do not cover is the
+  // split engine's, counted as setup-bound.
+  if (timed) adaptive_schedule_.begin_triangle();
   for (const AdaptiveLeaf& leaf : split.leaves) {
-    cycle += leaf.engine_cycles;
-    const TriangleRecord r = timed ? leaf_unit_->run(leaf.triangle, fragments, cycle)
+    const TriangleRecord r = timed ? leaf_unit_->run(leaf.triangle, fragments, adaptive_schedule_.offer(leaf.work))
                                    : leaf_unit_->compute(leaf.triangle, fragments);
     record.pixels += r.pixels;
     record.flags |= r.flags;
@@ -326,21 +324,12 @@ TriangleRecord ScanUnit::run_adaptive(const UnitTriangle& triangle, std::vector<
     record.fill_cycles += r.fill_cycles;
     record.walk_cycles += r.walk_cycles;
     record.record_cycles += r.record_cycles;
-    if (timed) cycle = leaf_unit_->schedule().last().accept + 1;
+    if (timed) adaptive_schedule_.accepted(leaf_unit_->schedule().last().accept);
   }
   if (!timed) return record;
-  // The engine is done (and can accept the next triangle) in the cycle after
-  // its last node; the triangle's record comes with its last leaf's record or
-  // then, whichever is later (rtl/adaptive_unit.sv). Its clocks run from the
-  // cycle after the last record, the first triangle's from its acceptance;
-  // what the leaves' clocks do not cover is the split engine's, counted as
-  // setup-bound.
-  split_free_ = cycle + split.tail_cycles;
-  const int64_t recorded = std::max(leaf_unit_->schedule().last().record, split_free_);
-  record.cycles = recorded - last_record_;
+  record.cycles = adaptive_schedule_.end_triangle(split.tail, leaf_unit_->schedule().last().record);
   record.setup_cycles += record.cycles - (record.setup_cycles + record.fill_cycles + record.walk_cycles +
                                           record.record_cycles);
-  last_record_ = recorded;
   return record;
 }
 

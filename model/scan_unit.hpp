@@ -106,7 +106,7 @@ class ScanUnit {
   // engine can accept the next triangle, and the cycle of the last record
   // (-1 at first: the first triangle, accepted in cycle 0, counts from there).
   std::unique_ptr<ScanUnit> leaf_unit_;
-  int64_t split_free_ = 0, last_record_ = -1;
+  AdaptiveSchedule adaptive_schedule_;  // the adaptive design: its split engine's stream
 };
 
 }  // namespace cdsim

@@ -10,6 +10,16 @@
 
 namespace cdsim {
 
+namespace {
+// Cycles of Kim's integer stage for a pixel whose I moved by `steps` (the
+// datapath records the steps: TriangleWork::kim_steps):
+// max(1, ceil(steps / kim_unroll)).
+int64_t kim_integer_cycles(int64_t steps, const Widths& w) {
+  const int64_t per_cycle = w.kim_unroll;
+  return steps <= per_cycle ? 1 : (steps + per_cycle - 1) / per_cycle;
+}
+}  // namespace
+
 UnitTiming::UnitTiming(const Design& design, const Widths& widths)
     : design_(design), widths_(widths), setup_cycles_(derive(widths).setup_cycles) {}
 
@@ -288,6 +298,14 @@ int64_t UnitTiming::walk_affine(const TriangleWork& work) const {
     cycles += widths_.recip_latency + (segments - 1) * std::max<int64_t>(0, widths_.recip_latency - segment);
   }
   return cycles;
+}
+
+int64_t AdaptiveSchedule::end_triangle(const SplitEngineWork& tail, int64_t leaf_record) {
+  split_free_ = cycle_ + split_engine_cycles(tail, widths_);
+  const int64_t recorded = std::max(leaf_record, split_free_);
+  const int64_t clocks = recorded - last_record_;
+  last_record_ = recorded;
+  return clocks;
 }
 
 }  // namespace cdsim

@@ -11,8 +11,11 @@
 // unit's clock: the setup engine, the fill (with setup_fifo_depth 2 a stage
 // of its own that holds a triangle) and the back end (column walker and
 // datapath) each hold one triangle at a time, and the table's banks hold a
-// band each (docs/microarchitecture.md, "Cycles per triangle"). A caller
-// that needs no cycles (an error sweep) can skip both: ScanUnit::compute.
+// band each (docs/microarchitecture.md, "Cycles per triangle"). The adaptive
+// design's split engine records its work between leaves (SplitEngineWork:
+// evaluations, dropped nodes) and AdaptiveSchedule places it, in front of
+// its affine unit's own UnitSchedule. A caller that needs no cycles (an error
+// sweep) can skip them all: ScanUnit::compute.
 //
 // Attribution: a triangle's clocks are those from the cycle after the previous
 // triangle's record to its own record cycle, both included (the first
@@ -181,6 +184,50 @@ class UnitSchedule {
   std::array<int64_t, 2> band_done_{-1, -1};  // per bank: the last walk cycle of its last band
   bool started_ = false;    // a triangle has been placed, so last_.record holds
   ScheduledTriangle last_;
+};
+
+// The adaptive design's split engine (rtl/adaptive_split.sv, docs/designs.md):
+// what it does between two leaves it hands on, which model/adaptive_split.cpp
+// records and these clocks price: the intake of a triangle (1/w normalised,
+// U = u q and V = v q), one node's evaluation (the midpoints: three
+// reciprocals issued on one pipelined unit, each result multiplied and
+// narrowed in the cycle it arrives; the tests), and dropping a node with an
+// empty box.
+struct SplitEngineWork {
+  int64_t evaluations = 0;
+  int64_t drops = 0;
+};
+inline constexpr int64_t kAdaptiveIntakeCycles = 2;
+inline constexpr int64_t kAdaptiveDropCycles = 1;
+inline int64_t adaptive_evaluation_cycles(const Widths& widths) { return 1 + 3 + widths.recip_latency + 1; }
+inline int64_t split_engine_cycles(const SplitEngineWork& work, const Widths& widths) {
+  return work.evaluations * adaptive_evaluation_cycles(widths) + work.drops * kAdaptiveDropCycles;
+}
+
+// The adaptive design's stream (rtl/adaptive_unit.sv): the split engine
+// takes a triangle when it is free, offers each leaf to its affine unit (which
+// has its own UnitSchedule) after the engine's work for it, and goes on in the
+// cycle after the leaf is accepted.
+class AdaptiveSchedule {
+ public:
+  explicit AdaptiveSchedule(const Widths& widths) : widths_(widths) {}
+  // The engine accepts the next triangle; its root node starts after the intake.
+  void begin_triangle() { cycle_ = split_free_ + kAdaptiveIntakeCycles; }
+  // The cycle the next leaf is offered, `work` after the previous acceptance.
+  int64_t offer(const SplitEngineWork& work) { return cycle_ += split_engine_cycles(work, widths_); }
+  // The leaf unit accepted the leaf in `accept`.
+  void accepted(int64_t accept) { cycle_ = accept + 1; }
+  // The triangle ends after `tail` (nodes dropped after its last leaf); its
+  // last leaf's record was delivered in `leaf_record`. The engine is free in
+  // the cycle after its last node; the triangle's record comes with its last
+  // leaf's record or then, whichever is later. Returns its clocks: from the
+  // cycle after the previous triangle's record (the first triangle's from
+  // its acceptance) to its own.
+  int64_t end_triangle(const SplitEngineWork& tail, int64_t leaf_record);
+
+ private:
+  Widths widths_;
+  int64_t split_free_ = 0, last_record_ = -1, cycle_ = 0;
 };
 
 // quad-subN: the cycle of a span's last pixel, counted from its column cycle

@@ -118,8 +118,8 @@ uint64_t check_adaptive_split(const Options& options, const std::string& name, i
     const AdaptiveSplit split = cdsim::adaptive_split(input[t], w, kWidth, kHeight);
     if (std::getenv("TB_TRACE")) {
       std::printf("triangle %zu: accept %" PRId64 ", %zu leaves, splits %" PRId64 ", dropped %" PRId64 ", tail %" PRId64 ":", t,
-                  free_from, split.leaves.size(), split.splits, split.dropped, split.tail_cycles);
-      for (const AdaptiveLeaf& l : split.leaves) std::printf(" d%d+%" PRId64, l.depth, l.engine_cycles);
+                  free_from, split.leaves.size(), split.splits, split.dropped, cdsim::split_engine_cycles(split.tail, w));
+      for (const AdaptiveLeaf& l : split.leaves) std::printf(" d%d+%" PRId64, l.depth, cdsim::split_engine_cycles(l.work, w));
       std::printf("\n");
     }
     splits += static_cast<uint64_t>(split.splits);
@@ -146,7 +146,7 @@ uint64_t check_adaptive_split(const Options& options, const std::string& name, i
     int64_t from = accept_expected + cdsim::kAdaptiveIntakeCycles;
     for (size_t i = 0; i < split.leaves.size(); ++i) {
       const AdaptiveLeaf& l = split.leaves[i];
-      const int64_t offer = from + l.engine_cycles;
+      const int64_t offer = from + cdsim::split_engine_cycles(l.work, w);
       // Nothing offered before its cycle.
       while (static_cast<int64_t>(bench.cycle()) < offer) {
         dut.leaf_ready_i = ready(rng);
@@ -195,7 +195,7 @@ uint64_t check_adaptive_split(const Options& options, const std::string& name, i
       dut.leaf_ready_i = 0;
       ++leaves;
     }
-    free_from = from + split.tail_cycles;
+    free_from = from + cdsim::split_engine_cycles(split.tail, w);
     // Done in the cycle the engine can take the next triangle.
     while (static_cast<int64_t>(bench.cycle()) < free_from) {
       bench.settle();
