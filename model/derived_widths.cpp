@@ -142,10 +142,8 @@ std::string rtl_header(const Widths& w, const std::string& config) {
   out += "// Derived widths and cycle budgets (derived_widths.cpp)\n";
   for (const auto& p : derived_table())
     out += fmt::format("`define CD_{} {}  // {}\n", upper(p.name), d.*(p.field), p.meaning);
-  out += "// Flag bits (model/design.hpp)\n";
-  for (int bit = 0; bit < flag::kCount; ++bit)
-    out += fmt::format("`define CD_FLAG_{} {}\n", upper(flag::name(bit)), bit);
-  out += fmt::format("`define CD_FLAG_COUNT {}\n", flag::kCount);
+  out += "// Encodings (model/encodings.def)\n";
+  out += encoding::rtl_defines();
   out += "// Table word, from bit 0: T.u, T.v, S.u, S.v, table_saturated, depth_range\n";
   out += fmt::format("`define CD_WORD_TU_LSB {}\n", 0);
   out += fmt::format("`define CD_WORD_TV_LSB {}\n", d.t_bits);

@@ -125,17 +125,4 @@ std::vector<Design> parse_design_list(const std::string& list) {
   return out;
 }
 
-namespace flag {
-const char* name(int bit) {
-  switch (bit) {
-    case 0: return "table_saturated";
-    case 1: return "output_saturated";
-    case 2: return "depth_range";
-    case 3: return "banded";
-    case 4: return "neighbour_dropped";
-  }
-  return "unknown";
-}
-}  // namespace flag
-
 }  // namespace cdsim

@@ -5,12 +5,21 @@
 #include <string>
 #include <vector>
 
+#include "encodings.hpp"
+
 namespace cdsim {
 
 struct Design {
-  // The values are the RTL's kind_i (rtl/cd_scan_unit.sv).
-  // Adaptive has no RTL yet: a split engine in front of an affine unit.
-  enum class Kind { ConstantDepth = 0, Divide = 1, Kim = 2, Affine = 3, Adaptive = 4 };
+  // The values are the RTL's kind_i (encodings.def). Adaptive is none of
+  // them: its own unit (rtl/adaptive_unit.sv) puts a split engine in front
+  // of a scan unit that walks its leaves as affine.
+  enum class Kind {
+    ConstantDepth = encoding::KIND_CONSTANT_DEPTH,
+    Divide = encoding::KIND_DIVIDE,
+    Kim = encoding::KIND_KIM,
+    Affine = encoding::KIND_AFFINE,
+    Adaptive = 1 << encoding::KIND_BITS
+  };
   std::string name;
   Kind kind = Kind::ConstantDepth;
   int density = 1;          // constant-depth lines per pixel (method 1: 2, 4)
@@ -94,16 +103,17 @@ std::string unit_parameter_list(const std::vector<UnitParameter>& parameters);
 // Saturation is raised where a saturated value reaches an output: a table entry
 // that saturated but that no fragment uses changes nothing and raises nothing.
 namespace flag {
-inline constexpr uint32_t kTableSaturated = 1u << 0;   // T or S of some line saturated
-inline constexpr uint32_t kOutputSaturated = 1u << 1;  // an output u or v saturated
-inline constexpr uint32_t kDepthRange = 1u << 2;       // a 1/w left its format (<= 0 or underflow)
-inline constexpr uint32_t kBanded = 1u << 3;           // more lines than the table holds: walked in bands
-inline constexpr uint32_t kNeighbourDropped = 1u << 4; // correction skipped: the neighbour line was flagged
-inline constexpr int kCount = 5;
+inline constexpr uint32_t kTableSaturated = 1u << encoding::FLAG_TABLE_SATURATED;     // T or S of some line saturated
+inline constexpr uint32_t kOutputSaturated = 1u << encoding::FLAG_OUTPUT_SATURATED;   // an output u or v saturated
+inline constexpr uint32_t kDepthRange = 1u << encoding::FLAG_DEPTH_RANGE;             // a 1/w left its format (<= 0 or underflow)
+inline constexpr uint32_t kBanded = 1u << encoding::FLAG_BANDED;                      // more lines than the table holds: walked in bands
+inline constexpr uint32_t kNeighbourDropped = 1u << encoding::FLAG_NEIGHBOUR_DROPPED; // correction skipped: the neighbour line was flagged
+inline constexpr int kCount = encoding::count_of("FLAG");
 // The flags that mark a pixel's value as possibly wrong (kBanded only says
 // how the triangle was walked).
 inline constexpr uint32_t kDatapath = kTableSaturated | kOutputSaturated | kDepthRange | kNeighbourDropped;
-const char* name(int bit);
+// "table_saturated", ... (encodings.def), "unknown" past kCount.
+inline const char* name(int bit) { return encoding::lower_name("FLAG", bit); }
 }  // namespace flag
 
 }  // namespace cdsim

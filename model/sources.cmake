@@ -9,6 +9,7 @@ set(CDSIM_MODEL_SOURCES
   ${CDSIM_MODEL_DIR}/triangle.cpp
   ${CDSIM_MODEL_DIR}/pixel_coverage.cpp
   ${CDSIM_MODEL_DIR}/exact.cpp
+  ${CDSIM_MODEL_DIR}/encodings.cpp
   ${CDSIM_MODEL_DIR}/design.cpp
   ${CDSIM_MODEL_DIR}/line_geometry.cpp
   ${CDSIM_MODEL_DIR}/setup_engine.cpp

@@ -47,7 +47,7 @@ module adaptive_unit #(
   input  logic [15:0] viewport_width_i,
   input  logic [15:0] viewport_height_i,
   // The design select of cd_scan_unit: this unit has one design.
-  input  logic [1:0]  kind_i,
+  input  logic [`CD_KIND_BITS-1:0] kind_i,
   input  logic [2:0]  segment_log2_i,
   input  logic        kim_pipelined_i,
   input  logic [1:0]  density_log2_i,
@@ -214,7 +214,7 @@ module adaptive_unit #(
     .tri_v2_i          (texel(leaf_v, 2)),
     .viewport_width_i  (viewport_width_q),
     .viewport_height_i (viewport_height_q),
-    .kind_i            (2'd3),  // affine (model/design.hpp)
+    .kind_i            (`CD_KIND_BITS'(`CD_KIND_AFFINE)),
     .segment_log2_i    (3'd0),
     .kim_pipelined_i   (1'b0),
     .density_log2_i    (2'd0),

@@ -95,7 +95,7 @@ module cd_scan_unit #(
   input  logic [15:0] viewport_width_i,
   input  logic [15:0] viewport_height_i,
   /* verilator lint_on UNUSEDSIGNAL */
-  input  logic [1:0]  kind_i,             // 0 constant depth, 1 divide, 2 Kim, 3 affine (model/design.hpp)
+  input  logic [`CD_KIND_BITS-1:0] kind_i,  // CD_KIND_* (model/encodings.def)
   input  logic [2:0]  segment_log2_i,     // affine: 0 plain, else subdivided every 2^segment_log2_i pixels
   input  logic        kim_pipelined_i,    // Kim: 1 kim-pipe, 0 kim-iter
   input  logic [1:0]  density_log2_i,     // m = 1, 2, 4
@@ -126,10 +126,12 @@ module cd_scan_unit #(
   // engine's results in the last setup cycle, and every table write. With
   // them a mismatch is traced to the block where it starts.
   output logic        obs_setup_valid_o,
-  output logic [7:0]  obs_setup_bits_o,   // {depth_range, no_lines, x_major, empty}
+  // Bit and field positions: CD_OBS_SETUP_*, CD_OBS_BOX_*, CD_OBS_LINES_* and
+  // CD_OBS_WRITE_* (model/encodings.def), which the bench and vectors read.
+  output logic [7:0]  obs_setup_bits_o,   // empty, x_major, no_lines, depth_range
   output logic [31:0] obs_setup_g_o,      // sign-extended
-  output logic [63:0] obs_setup_box_o,    // {major_lo, major_count, minor_lo, minor_hi}, 16 bits each
-  output logic [63:0] obs_setup_lines_o,  // {pixel_line_lo, pixel_line_hi}, 32 bits each, signed
+  output logic [63:0] obs_setup_box_o,    // major_lo, major_count, minor_lo, minor_hi, 16 bits each
+  output logic [63:0] obs_setup_lines_o,  // pixel_line_lo, pixel_line_hi, 32 bits each, signed
   output logic        obs_write_valid_o,
   output logic [31:0] obs_write_addr_o,
   output logic [63:0] obs_write_tu_o,     // T.u, T.v, S.u, S.v, sign-extended
@@ -137,7 +139,7 @@ module cd_scan_unit #(
   output logic [63:0] obs_write_su_o,
   output logic [63:0] obs_write_sv_o,
   output logic [63:0] obs_write_eps_o,    // cd-persp's eps, sign-extended (0 without HasPersp)
-  output logic [2:0]  obs_write_flags_o   // {eps_saturated, depth_range, table_saturated}
+  output logic [2:0]  obs_write_flags_o   // table_saturated, depth_range, eps_saturated
 );
 
   localparam int TableDepth   = `CD_TABLE_DEPTH;
@@ -164,18 +166,23 @@ module cd_scan_unit #(
   localparam int FlagBanded   = `CD_FLAG_BANDED;
   localparam int FifoDepth    = `CD_SETUP_FIFO_DEPTH;
 
-  localparam logic [2:0] StIdle     = 3'd0;
-  localparam logic [2:0] StFillWait = 3'd1;  // the walker waits for its band to be in the table
-  localparam logic [2:0] StInit     = 3'd2;  // the walker loads from the context
-  localparam logic [2:0] StColumn   = 3'd3;
-  localparam logic [2:0] StPixel    = 3'd4;
-  localparam logic [2:0] StScan     = 3'd5;  // columns walked with no possible line
-  localparam logic [2:0] StRecord   = 3'd6;
-  localparam logic [2:0] StDrain    = 3'd7;  // per-pixel designs: the pipeline empties
+  // The back's states, the design kinds, the front's and the fill's states:
+  // encodings the cover points, the bench and the model share
+  // (model/encodings.def, CD_STATE_*, CD_KIND_*, CD_FRONT_*, CD_FILL_*).
+  typedef enum logic [`CD_STATE_BITS-1:0] {
+    StIdle     = `CD_STATE_IDLE,
+    StFillWait = `CD_STATE_FILL_WAIT,  // the walker waits for its band to be in the table
+    StInit     = `CD_STATE_INIT,       // the walker loads from the context
+    StColumn   = `CD_STATE_COLUMN,
+    StPixel    = `CD_STATE_PIXEL,
+    StScan     = `CD_STATE_SCAN,       // columns walked with no possible line
+    StRecord   = `CD_STATE_RECORD,
+    StDrain    = `CD_STATE_DRAIN       // per-pixel designs: the pipeline empties
+  } state_e;
 
-  localparam logic [1:0] KindDivide = 2'd1;  // kind_i: 0 is constant depth
-  localparam logic [1:0] KindKim    = 2'd2;
-  localparam logic [1:0] KindAffine = 2'd3;
+  localparam logic [`CD_KIND_BITS-1:0] KindDivide = `CD_KIND_BITS'(`CD_KIND_DIVIDE);  // kind_i
+  localparam logic [`CD_KIND_BITS-1:0] KindKim    = `CD_KIND_BITS'(`CD_KIND_KIM);
+  localparam logic [`CD_KIND_BITS-1:0] KindAffine = `CD_KIND_BITS'(`CD_KIND_AFFINE);
   localparam bit HasKim = HasKimIter || HasKimPipe;
   localparam bit HasSub = HasAffineSub || HasQuadSub;  // the subdivided designs
   localparam int Datapaths = (HasTable ? 1 : 0) + (HasDivide ? 1 : 0) + (HasAffine ? 1 : 0) +
@@ -201,17 +208,21 @@ module cd_scan_unit #(
   // the back holds its own copy, so the front sets up the next triangle during
   // the walk, but the fill reads the setup engine's registers; with 0 they
   // take turns.
-  localparam logic [1:0] FrIdle     = 2'd0;
-  localparam logic [1:0] FrSetup    = 2'd1;
-  localparam logic [1:0] FrOffer    = 2'd2;  // set up, waiting to move on
-  localparam logic [1:0] FrFillHeld = 2'd3;  // FifoDepth < 2: the fill reads the setup engine's registers
-  localparam logic [1:0] FlIdle     = 2'd0;
-  localparam logic [1:0] FlFill     = 2'd1;
-  localparam logic [1:0] FlBandWait = 2'd2;  // the next band's bank is still walked
+  typedef enum logic [`CD_FRONT_BITS-1:0] {
+    FrIdle     = `CD_FRONT_IDLE,
+    FrSetup    = `CD_FRONT_SETUP,
+    FrOffer    = `CD_FRONT_OFFER,     // set up, waiting to move on
+    FrFillHeld = `CD_FRONT_FILL_HELD  // FifoDepth < 2: the fill reads the setup engine's registers
+  } front_e;
+  typedef enum logic [`CD_FILL_BITS-1:0] {
+    FlIdle     = `CD_FILL_IDLE,
+    FlFill     = `CD_FILL_FILLING,
+    FlBandWait = `CD_FILL_BAND_WAIT   // the next band's bank is still walked
+  } fill_e;
 
-  logic [1:0]  front_d, front_q;
+  front_e     front_d, front_q;
   logic [StepCountBits-1:0] fcount_d, fcount_q;  // setup cycle
-  logic [1:0]  f_kind_d, f_kind_q;
+  logic [`CD_KIND_BITS-1:0] f_kind_d, f_kind_q;
   logic [2:0]  f_segment_log2_d, f_segment_log2_q;
   logic        f_kim_pipelined_d, f_kim_pipelined_q;
   logic [1:0]  f_density_log2_d, f_density_log2_q;
@@ -221,7 +232,7 @@ module cd_scan_unit #(
   logic        f_per_pixel;                      // the front's triangle: a per-pixel design
   logic        f_mode_affine;                    // the front's triangle: affine (its own setup)
 
-  logic [1:0]  fill_d, fill_q;
+  fill_e      fill_d, fill_q;
   logic [StepCountBits-1:0] fl_count_d, fl_count_q;  // fill cycle of the band
   logic signed [LineBits-1:0] fl_band_lo_d, fl_band_lo_q, fl_band_hi_d, fl_band_hi_q;
   logic signed [LineBits-1:0] fl_line_hi_d, fl_line_hi_q;      // the triangle's last pixel line
@@ -254,7 +265,7 @@ module cd_scan_unit #(
   logic [1:0]  p_density_log2;
   logic [7:0]  p_flags;
 
-  logic [2:0]  state_d, state_q;                 // the back's
+  state_e     state_d, state_q;                 // the back's
   logic [StepCountBits-1:0] count_d, count_q;    // scan / drain cycle
   logic [1:0]  b_kind_d, b_kind_q, kind_q;
   logic        mode_divide, mode_affine, mode_sub, mode_kim;  // this triangle's datapath, when not the table
@@ -928,7 +939,7 @@ module cd_scan_unit #(
   // The designs by kind and segment: {divide, affine, affine-subN, Kim}, none
   // for the table. With one datapath the mode is a constant, and synthesis
   // keeps only it.
-  function automatic logic [3:0] modes_of(input logic [1:0] kind, input logic [2:0] segment_log2);
+  function automatic logic [3:0] modes_of(input logic [`CD_KIND_BITS-1:0] kind, input logic [2:0] segment_log2);
     modes_of = {HasDivide && (Datapaths == 1 || kind == KindDivide),
                 HasAffine && (Datapaths == 1 || (kind == KindAffine && segment_log2 == '0)),
                 HasSub && (Datapaths == 1 || (kind == KindAffine && segment_log2 != '0)),
@@ -937,7 +948,7 @@ module cd_scan_unit #(
   logic [3:0] f_modes;
   // The front's triangle walks as divide when the fallback takes it (a
   // constant-depth design with a divide fallback, near its horizon).
-  logic [1:0] f_kind;
+  logic [`CD_KIND_BITS-1:0] f_kind;
   assign f_kind = HasDivide && HasTable && !setup_empty && setup_fallback ? KindDivide : f_kind_q;
   assign f_modes = modes_of(f_kind, f_segment_log2_q);
   assign tri_lines = HasTable && !(|modes_of(kind_i, segment_log2_i));
@@ -1600,12 +1611,18 @@ module cd_scan_unit #(
     obs_write_addr_o = '0;
     if (HasObservation) begin
       obs_setup_valid_o = front_q == FrSetup && fcount_q == StepCountBits'(SetupCycles - 1) && !hold;
-      obs_setup_bits_o = {4'd0, setup_flags[`CD_FLAG_DEPTH_RANGE], setup_no_lines, s_x_major,
-                          setup_empty};
-      obs_setup_box_o = {16'(s_major_lo), 16'(s_major_count), 16'(s_minor_lo), 16'(s_minor_hi)};
+      obs_setup_bits_o[`CD_OBS_SETUP_EMPTY] = setup_empty;
+      obs_setup_bits_o[`CD_OBS_SETUP_X_MAJOR] = s_x_major;
+      obs_setup_bits_o[`CD_OBS_SETUP_NO_LINES] = setup_no_lines;
+      obs_setup_bits_o[`CD_OBS_SETUP_DEPTH_RANGE] = setup_flags[`CD_FLAG_DEPTH_RANGE];
+      obs_setup_box_o[`CD_OBS_BOX_MAJOR_LO +: 16] = 16'(s_major_lo);
+      obs_setup_box_o[`CD_OBS_BOX_MAJOR_COUNT +: 16] = 16'(s_major_count);
+      obs_setup_box_o[`CD_OBS_BOX_MINOR_LO +: 16] = 16'(s_minor_lo);
+      obs_setup_box_o[`CD_OBS_BOX_MINOR_HI +: 16] = 16'(s_minor_hi);
       if (HasTable) begin
         obs_setup_g_o = 32'(s_g);
-        obs_setup_lines_o = {32'(s_pixel_line_lo), 32'(s_pixel_line_hi)};
+        obs_setup_lines_o[`CD_OBS_LINES_LO +: 32] = 32'(s_pixel_line_lo);
+        obs_setup_lines_o[`CD_OBS_LINES_HI +: 32] = 32'(s_pixel_line_hi);
         obs_write_valid_o = write_valid;
         obs_write_addr_o = 32'(write_addr);
       end
@@ -1615,13 +1632,19 @@ module cd_scan_unit #(
   assign obs_write_tv_o = 64'($signed(observed_entry[`CD_WORD_TV_LSB +: TBits]));
   assign obs_write_su_o = 64'($signed(observed_entry[`CD_WORD_SU_LSB +: SBits]));
   assign obs_write_sv_o = 64'($signed(observed_entry[`CD_WORD_SV_LSB +: SBits]));
+  logic observed_eps_saturated;
   if (Persp) begin : gen_observe_eps
     assign obs_write_eps_o = 64'($signed(observed_entry[`CD_WORD_EPS_LSB +: `CD_EPS_BITS]));
-    assign obs_write_flags_o = {observed_entry[`CD_WORD_EPS_SATURATED_BIT], observed_entry[`CD_WORD_DEPTH_RANGE_BIT],
-                                observed_entry[`CD_WORD_SATURATED_BIT]};
+    assign observed_eps_saturated = observed_entry[`CD_WORD_EPS_SATURATED_BIT];
   end else begin : gen_observe_no_eps
     assign obs_write_eps_o = '0;
-    assign obs_write_flags_o = {1'b0, observed_entry[`CD_WORD_DEPTH_RANGE_BIT], observed_entry[`CD_WORD_SATURATED_BIT]};
+    assign observed_eps_saturated = 1'b0;
+  end
+  always_comb begin
+    obs_write_flags_o = '0;
+    obs_write_flags_o[`CD_OBS_WRITE_SATURATED] = observed_entry[`CD_WORD_SATURATED_BIT];
+    obs_write_flags_o[`CD_OBS_WRITE_DEPTH_RANGE] = observed_entry[`CD_WORD_DEPTH_RANGE_BIT];
+    obs_write_flags_o[`CD_OBS_WRITE_EPS_SATURATED] = observed_eps_saturated;
   end
 
 `ifndef SYNTHESIS

@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "cache_files.hpp"
+#include "encodings.hpp"
 #include "scoreboard.hpp"
 
 namespace cdsim::rtl {
@@ -250,17 +251,21 @@ class Bench : public sc_core::sc_module {
       const uint32_t bits = dut.obs_setup_bits_o;
       const uint64_t box = dut.obs_setup_box_o, lines = dut.obs_setup_lines_o;
       RtlSetup a;
-      a.empty = bits & 1;
-      a.x_major = (bits >> 1) & 1;
-      a.no_lines = (bits >> 2) & 1;
-      a.depth_range = (bits >> 3) & 1;
+      const auto bit = [&](int position) { return ((bits >> position) & 1) != 0; };
+      const auto field = [](uint64_t word, int lsb, int width) {
+        return static_cast<uint32_t>((word >> lsb) & ((uint64_t{1} << width) - 1));
+      };
+      a.empty = bit(encoding::OBS_SETUP_EMPTY);
+      a.x_major = bit(encoding::OBS_SETUP_X_MAJOR);
+      a.no_lines = bit(encoding::OBS_SETUP_NO_LINES);
+      a.depth_range = bit(encoding::OBS_SETUP_DEPTH_RANGE);
       a.g = static_cast<int32_t>(dut.obs_setup_g_o);
-      a.major_lo = static_cast<int64_t>((box >> 48) & 0xffff);
-      a.major_count = static_cast<int64_t>((box >> 32) & 0xffff);
-      a.minor_lo = static_cast<int64_t>((box >> 16) & 0xffff);
-      a.minor_hi = static_cast<int64_t>(box & 0xffff);
-      a.pixel_line_lo = static_cast<int32_t>(static_cast<uint32_t>(lines >> 32));
-      a.pixel_line_hi = static_cast<int32_t>(static_cast<uint32_t>(lines));
+      a.major_lo = field(box, encoding::OBS_BOX_MAJOR_LO, 16);
+      a.major_count = field(box, encoding::OBS_BOX_MAJOR_COUNT, 16);
+      a.minor_lo = field(box, encoding::OBS_BOX_MINOR_LO, 16);
+      a.minor_hi = field(box, encoding::OBS_BOX_MINOR_HI, 16);
+      a.pixel_line_lo = static_cast<int32_t>(field(lines, encoding::OBS_LINES_LO, 32));
+      a.pixel_line_hi = static_cast<int32_t>(field(lines, encoding::OBS_LINES_HI, 32));
       if (!scoreboard_.setup(a)) fail();
     }
     if (checking_ && dut.obs_write_valid_o) {
@@ -270,9 +275,10 @@ class Bench : public sc_core::sc_module {
       w.t_v = static_cast<int64_t>(dut.obs_write_tv_o);
       w.s_u = static_cast<int64_t>(dut.obs_write_su_o);
       w.s_v = static_cast<int64_t>(dut.obs_write_sv_o);
-      w.saturated = dut.obs_write_flags_o & 1;
-      w.depth_range = (dut.obs_write_flags_o >> 1) & 1;
-      w.eps_saturated = (dut.obs_write_flags_o >> 2) & 1;
+      const uint32_t flags = dut.obs_write_flags_o;
+      w.saturated = (flags >> encoding::OBS_WRITE_SATURATED) & 1;
+      w.depth_range = (flags >> encoding::OBS_WRITE_DEPTH_RANGE) & 1;
+      w.eps_saturated = (flags >> encoding::OBS_WRITE_EPS_SATURATED) & 1;
       w.eps = static_cast<int64_t>(dut.obs_write_eps_o);
       if (!scoreboard_.table_write(w)) fail();
     }

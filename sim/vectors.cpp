@@ -9,7 +9,8 @@
 //   table_writes.hex  every write of the table fill, in order
 //   fragments.hex     every fragment the datapath emits, in order
 //   records.hex       each triangle's record, with how many writes and fragments it has
-// with vectors.svh (the counts and the unit's parameters), cd_widths.svh (the
+// with vectors.svh (the counts, the unit's parameters, the words as packed
+// structs), cd_widths.svh (the
 // widths) and manifest.json (widths, designs, source, seed, build, layouts).
 // tests/vectors/cd_scan_vectors_tb.sv replays them (docs/vectors.md).
 #include <fmt/format.h>
@@ -24,6 +25,7 @@
 
 #include "cache_files.hpp"
 #include "derived_widths.hpp"
+#include "encodings.hpp"
 #include "interrupt.hpp"
 #include "regress.hpp"
 #include "report.hpp"
@@ -39,20 +41,29 @@ struct Field {
 };
 using Layout = std::vector<Field>;
 
-// The layouts of the files, most significant field first. The testbench's
-// packed structs (tests/vectors/cd_scan_vectors_tb.sv) list the same fields.
+// The layouts of the files, most significant field first. vectors.svh gives
+// the testbench (tests/vectors/cd_scan_vectors_tb.sv) each as a packed struct
+// (struct_typedef). The bits of a setup's `bits` and a table write's `flags`
+// are CD_OBS_SETUP_* and CD_OBS_WRITE_* (model/encodings.def).
 const Layout kTriangle = {
-    {"kind", 4},  {"segment_log2", 4}, {"kim_pipelined", 4}, {"density_log2", 4},
-    {"correction", 4}, {"viewport_width", 16}, {"viewport_height", 16},
+    {"kind", 4},  {"segment_log2", 4}, {"quadratic", 4}, {"kim_pipelined", 4}, {"density_log2", 4},
+    {"correction", 4}, {"persp", 4}, {"fallback", 4}, {"viewport_width", 16}, {"viewport_height", 16},
     {"x0", 32}, {"y0", 32}, {"q0", 32}, {"u0", 32}, {"v0", 32},
     {"x1", 32}, {"y1", 32}, {"q1", 32}, {"u1", 32}, {"v1", 32},
     {"x2", 32}, {"y2", 32}, {"q2", 32}, {"u2", 32}, {"v2", 32}};
-const Layout kSetup = {{"bits", 8}, {"g", 32}, {"box", 64}, {"lines", 64}};
+const Layout kSetup = {{"bits", encoding::OBS_SETUP_BITS}, {"g", 32}, {"box", 64}, {"lines", 64}};
 const Layout kTableWrite = {{"address", 32}, {"t_u", 64}, {"t_v", 64}, {"s_u", 64},
-                            {"s_v", 64},     {"eps", 64}, {"flags", 4}};
+                            {"s_v", 64},     {"eps", 64}, {"flags", encoding::OBS_WRITE_BITS}};
 const Layout kFragment = {{"x", 16}, {"y", 16}, {"u", 64}, {"v", 64}, {"flags", 8}};
 const Layout kRecord = {{"cycles", 64}, {"lines", 32},        {"bands", 32},    {"pixels", 32},
                         {"flags", 8},   {"table_writes", 32}, {"fragments", 32}};
+
+// The layout as a SystemVerilog packed struct, most significant field first.
+std::string struct_typedef(const Layout& layout, const std::string& name) {
+  std::string text = "typedef struct packed {\n";
+  for (const Field& f : layout) text += fmt::format("  logic [{}:0] {};\n", f.bits - 1, f.name);
+  return text + fmt::format("}} {};\n", name);
+}
 
 int layout_bits(const Layout& layout) {
   int bits = 0;
@@ -80,26 +91,39 @@ std::string triangle_word(const Job& job) {
   const DesignSelect d = design_select(*job.design);
   const auto& v = job.triangle.vertex;
   return word(kTriangle,
-              {d.kind, d.segment_log2 | (d.quadratic << 3), d.kim_pipelined, d.density_log2, d.correction | (d.persp << 1) | (d.fallback << 2),
+              {d.kind, d.segment_log2, d.quadratic, d.kim_pipelined, d.density_log2, d.correction, d.persp, d.fallback,
                job.viewport_width, job.viewport_height,
                v[0].x, v[0].y, v[0].q_float, v[0].u, v[0].v,
                v[1].x, v[1].y, v[1].q_float, v[1].u, v[1].v,
                v[2].x, v[2].y, v[2].q_float, v[2].u, v[2].v});
 }
 
-// As the observation ports show the setup (rtl/cd_scan_unit.sv): bits
-// {depth_range, no_lines, x_major, empty}, the box as four 16-bit fields, the
-// pixel lines as two 32-bit fields.
+// As the observation ports show the setup (rtl/cd_scan_unit.sv): the bits
+// at CD_OBS_SETUP_*, the box as four 16-bit fields at CD_OBS_BOX_*, the
+// pixel lines as two 32-bit fields at CD_OBS_LINES_*.
 std::string setup_word(const Setup& s) {
   const bool no_lines = s.pixel_line_lo > s.pixel_line_hi;
   const bool depth_range = (s.flags & flag::kDepthRange) != 0;
-  const auto field16 = [](int64_t v) { return static_cast<uint64_t>(v) & 0xffff; };
-  const auto field32 = [](int64_t v) { return static_cast<uint64_t>(v) & 0xffffffff; };
-  const uint64_t box = field16(s.major_lo) << 48 | field16(s.major_count) << 32 |
-                       field16(s.minor_lo) << 16 | field16(s.minor_hi);
-  const uint64_t lines = field32(s.pixel_line_lo) << 32 | field32(s.pixel_line_hi);
-  return word(kSetup, {(depth_range << 3) | (no_lines << 2) | (s.x_major << 1) | int64_t{s.empty}, s.g,
-                       static_cast<int64_t>(box), static_cast<int64_t>(lines)});
+  const auto at = [](int64_t v, int lsb, int width) {
+    return (static_cast<uint64_t>(v) & ((uint64_t{1} << width) - 1)) << lsb;
+  };
+  const uint64_t box = at(s.major_lo, encoding::OBS_BOX_MAJOR_LO, 16) |
+                       at(s.major_count, encoding::OBS_BOX_MAJOR_COUNT, 16) |
+                       at(s.minor_lo, encoding::OBS_BOX_MINOR_LO, 16) | at(s.minor_hi, encoding::OBS_BOX_MINOR_HI, 16);
+  const uint64_t lines = at(s.pixel_line_lo, encoding::OBS_LINES_LO, 32) | at(s.pixel_line_hi, encoding::OBS_LINES_HI, 32);
+  const uint64_t bits = at(s.empty, encoding::OBS_SETUP_EMPTY, 1) | at(s.x_major, encoding::OBS_SETUP_X_MAJOR, 1) |
+                        at(no_lines, encoding::OBS_SETUP_NO_LINES, 1) |
+                        at(depth_range, encoding::OBS_SETUP_DEPTH_RANGE, 1);
+  return word(kSetup, {static_cast<int64_t>(bits), s.g, static_cast<int64_t>(box), static_cast<int64_t>(lines)});
+}
+
+// A table write's flags, at CD_OBS_WRITE_*; EPS_CHECKED marks cd-persp's
+// words, whose eps the bench compares.
+int64_t write_flags(const TableWrite& w, bool persp) {
+  const auto at = [](bool on, int position) { return on ? int64_t{1} << position : 0; };
+  return at(persp, encoding::OBS_WRITE_EPS_CHECKED) | at(w.entry.eps_saturated, encoding::OBS_WRITE_EPS_SATURATED) |
+         at((w.entry.flags & flag::kDepthRange) != 0, encoding::OBS_WRITE_DEPTH_RANGE) |
+         at((w.entry.flags & flag::kTableSaturated) != 0, encoding::OBS_WRITE_SATURATED);
 }
 
 nlohmann::json layout_json(const Layout& layout) {
@@ -173,10 +197,7 @@ int run_vectors_command(const VectorsOptions& given) {
       setups += setup_word(trace.setup);
       for (const TableWrite& w : trace.writes)
         writes += word(kTableWrite, {w.address, w.entry.t_u, w.entry.t_v, w.entry.s_u, w.entry.s_v,
-                                     w.entry.eps,
-                                     (job.design->persp ? 8 : 0) | (w.entry.eps_saturated ? 4 : 0) |
-                                         ((w.entry.flags & flag::kDepthRange) ? 2 : 0) |
-                                         ((w.entry.flags & flag::kTableSaturated) ? 1 : 0)});
+                                     w.entry.eps, write_flags(w, job.design->persp)});
       for (const Fragment& f : fragments)
         fragments_text += word(kFragment, {f.x, f.y, f.u, f.v, f.flags});
       records += word(kRecord, {record.cycles, record.lines, record.bands, record.pixels, record.flags,
@@ -197,6 +218,10 @@ int run_vectors_command(const VectorsOptions& given) {
       parameter_list += fmt::format("{}.{}({})", parameter_list.empty() ? "" : ", ", p.name, p.value);
     svh += fmt::format("`define CD_VEC_UNIT_PARAMETERS {}\n", parameter_list);
     svh += fmt::format("`define CD_VEC_HAS_TABLE {:d}\n", has_table);
+    svh += "// The words of the files, most significant field first (sim/vectors.cpp's layouts).\n";
+    svh += struct_typedef(kTriangle, "triangle_t") + struct_typedef(kSetup, "setup_t") +
+           struct_typedef(kTableWrite, "table_write_t") + struct_typedef(kFragment, "fragment_t") +
+           struct_typedef(kRecord, "record_t");
 
     nlohmann::json params = nlohmann::json::object();
     for (const UnitParameter& p : parameters) params[p.name] = p.value;
@@ -237,7 +262,7 @@ int run_vectors_command(const VectorsOptions& given) {
                                "a fragment was refused; then the triangle's write and fragment counts",
                                static_cast<int64_t>(jobs.size()), kRecord)}}},
         {"headers", {{"cd_widths.svh", "the RTL's widths (cdsim widths --sv)"},
-                     {"vectors.svh", "the counts and the unit's parameters, for the testbench"}}}};
+                     {"vectors.svh", "the counts, the unit's parameters and the words' packed structs, for the testbench"}}}};
 
     const std::filesystem::path out = given.out;
     write_files_atomic({{out / "triangles.hex", triangles},

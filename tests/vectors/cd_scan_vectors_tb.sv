@@ -29,42 +29,14 @@ module cd_scan_vectors_tb;
   localparam bit HasTable = `CD_VEC_HAS_TABLE;
   localparam int MaxReported = 20;
 
-  // The words of the files, most significant field first (sim/vectors.cpp).
-  typedef struct packed {
-    logic [3:0]  kind;
-    logic [3:0]  segment_log2;  // {quadratic, segment_log2}
-    logic [3:0]  kim_pipelined;
-    logic [3:0]  density_log2;
-    logic [3:0]  correction;  // {fallback, persp, correction}
-    logic [15:0] viewport_width;
-    logic [15:0] viewport_height;
-    logic [31:0] x0, y0, q0, u0, v0;
-    logic [31:0] x1, y1, q1, u1, v1;
-    logic [31:0] x2, y2, q2, u2, v2;
-  } triangle_t;
-  typedef struct packed {
-    logic [7:0]  bits;   // {depth_range, no_lines, x_major, empty}
-    logic [31:0] g;
-    logic [63:0] box;    // {major_lo, major_count, minor_lo, minor_hi}
-    logic [63:0] lines;  // {pixel_line_lo, pixel_line_hi}
-  } setup_t;
-  typedef struct packed {
-    logic [31:0] address;
-    logic [63:0] t_u, t_v, s_u, s_v;
-    logic [63:0] eps;
-    logic [3:0]  flags;  // {eps checked (cd-persp), eps_saturated, depth_range, saturated}
-  } table_write_t;
-  typedef struct packed {
-    logic [15:0] x, y;
-    logic [63:0] u, v;
-    logic [7:0]  flags;
-  } fragment_t;
-  typedef struct packed {
-    logic [63:0] cycles;
-    logic [31:0] lines, bands, pixels;
-    logic [7:0]  flags;
-    logic [31:0] table_writes, fragments;
-  } record_t;
+  // The words of the files are triangle_t, setup_t, table_write_t,
+  // fragment_t and record_t, packed structs from vectors.svh (sim/vectors.cpp's
+  // layouts); the bits of a setup's `bits` and a table write's `flags` are at
+  // CD_OBS_SETUP_* and CD_OBS_WRITE_* (model/encodings.def).
+  localparam int Empty = `CD_OBS_SETUP_EMPTY, XMajor = `CD_OBS_SETUP_X_MAJOR;
+  localparam int NoLines = `CD_OBS_SETUP_NO_LINES, SetupDepthRange = `CD_OBS_SETUP_DEPTH_RANGE;
+  localparam int Saturated = `CD_OBS_WRITE_SATURATED, WriteDepthRange = `CD_OBS_WRITE_DEPTH_RANGE;
+  localparam int EpsSaturated = `CD_OBS_WRITE_EPS_SATURATED, EpsChecked = `CD_OBS_WRITE_EPS_CHECKED;
 
   triangle_t    triangles     [Triangles];
   setup_t       setups        [Triangles];
@@ -108,10 +80,10 @@ module cd_scan_vectors_tb;
     .tri_x2_i(presented.x2), .tri_y2_i(presented.y2), .tri_q2_i(presented.q2),
     .tri_u2_i(presented.u2), .tri_v2_i(presented.v2),
     .viewport_width_i(presented.viewport_width), .viewport_height_i(presented.viewport_height),
-    .kind_i(presented.kind[1:0]), .segment_log2_i(presented.segment_log2[2:0]),
-    .quadratic_i(presented.segment_log2[3]),
+    .kind_i(presented.kind[`CD_KIND_BITS-1:0]), .segment_log2_i(presented.segment_log2[2:0]),
+    .quadratic_i(presented.quadratic[0]),
     .kim_pipelined_i(presented.kim_pipelined[0]), .density_log2_i(presented.density_log2[1:0]),
-    .correction_i(presented.correction[0]), .persp_i(presented.correction[1]), .fallback_i(presented.correction[2]),
+    .correction_i(presented.correction[0]), .persp_i(presented.persp[0]), .fallback_i(presented.fallback[0]),
     .frag_valid_o(frag_valid), .frag_ready_i(frag_ready),
     .frag_x_o(frag_x), .frag_y_o(frag_y), .frag_u_o(frag_u), .frag_v_o(frag_v),
     .frag_flags_o(frag_flags),
@@ -147,19 +119,20 @@ module cd_scan_vectors_tb;
     setup_t e = setups[current];
     if (setup_seen) mismatch("setup engine", "results shown twice", 64'd1, 64'd2);
     setup_seen = 1'b1;
-    if (obs_setup_bits[0] != e.bits[0]) begin
-      mismatch("setup engine", "empty", 64'(e.bits[0]), 64'(obs_setup_bits[0]));
+    if (obs_setup_bits[Empty] != e.bits[Empty]) begin
+      mismatch("setup engine", "empty", 64'(e.bits[Empty]), 64'(obs_setup_bits[Empty]));
       return;
     end
-    if (e.bits[0]) return;  // nothing else of an empty triangle is used
-    if (obs_setup_bits[1] != e.bits[1]) mismatch("setup engine", "x_major", 64'(e.bits[1]), 64'(obs_setup_bits[1]));
+    if (e.bits[Empty]) return;  // nothing else of an empty triangle is used
+    if (obs_setup_bits[XMajor] != e.bits[XMajor])
+      mismatch("setup engine", "x_major", 64'(e.bits[XMajor]), 64'(obs_setup_bits[XMajor]));
     if (HasTable && obs_setup_g != e.g) mismatch("setup engine", "g", 64'(e.g), 64'(obs_setup_g));
     if (obs_setup_box != e.box) mismatch("setup engine", "box", e.box, obs_setup_box);
-    if (obs_setup_bits[3] != e.bits[3])
-      mismatch("setup engine", "depth_range", 64'(e.bits[3]), 64'(obs_setup_bits[3]));
-    if (obs_setup_bits[2] != e.bits[2])
-      mismatch("setup engine", "no_lines", 64'(e.bits[2]), 64'(obs_setup_bits[2]));
-    else if (HasTable && !e.bits[2] && obs_setup_lines != e.lines)
+    if (obs_setup_bits[SetupDepthRange] != e.bits[SetupDepthRange])
+      mismatch("setup engine", "depth_range", 64'(e.bits[SetupDepthRange]), 64'(obs_setup_bits[SetupDepthRange]));
+    if (obs_setup_bits[NoLines] != e.bits[NoLines])
+      mismatch("setup engine", "no_lines", 64'(e.bits[NoLines]), 64'(obs_setup_bits[NoLines]));
+    else if (HasTable && !e.bits[NoLines] && obs_setup_lines != e.lines)
       mismatch("setup engine", "pixel lines", e.lines, obs_setup_lines);
   endfunction
 
@@ -180,10 +153,11 @@ module cd_scan_vectors_tb;
     if (obs_write_tv != e.t_v) mismatch(where, "T.v", e.t_v, obs_write_tv);
     if (obs_write_su != e.s_u) mismatch(where, "S.u", e.s_u, obs_write_su);
     if (obs_write_sv != e.s_v) mismatch(where, "S.v", e.s_v, obs_write_sv);
-    if (obs_write_flags[1:0] != e.flags[1:0]) mismatch(where, "flags", 64'(e.flags), 64'(obs_write_flags));
-    if (e.flags[3] && obs_write_eps != e.eps) mismatch(where, "eps", e.eps, obs_write_eps);
-    if (e.flags[3] && obs_write_flags[2] != e.flags[2])
-      mismatch(where, "eps_saturated", 64'(e.flags[2]), 64'(obs_write_flags[2]));
+    if (obs_write_flags[Saturated] != e.flags[Saturated] || obs_write_flags[WriteDepthRange] != e.flags[WriteDepthRange])
+      mismatch(where, "flags", 64'(e.flags), 64'(obs_write_flags));
+    if (e.flags[EpsChecked] && obs_write_eps != e.eps) mismatch(where, "eps", e.eps, obs_write_eps);
+    if (e.flags[EpsChecked] && obs_write_flags[EpsSaturated] != e.flags[EpsSaturated])
+      mismatch(where, "eps_saturated", 64'(e.flags[EpsSaturated]), 64'(obs_write_flags[EpsSaturated]));
   endfunction
 
   function automatic void check_fragment();
