@@ -213,6 +213,30 @@ int widths_command(const CommonOptions& options, const std::string& sv_path) {
 }
 
 // Runs the parsed command; returns its exit status.
+// Each design of model/designs.def with what the tools read from it.
+nlohmann::json designs_json() {
+  nlohmann::json out = nlohmann::json::array();
+  for (const Design& d : all_designs())
+    out.push_back({{"name", d.name},
+                   {"summary", d.summary},
+                   {"kind", kind_name(d.kind)},
+                   {"density", d.density},
+                   {"correction", d.correction},
+                   {"pipelined", d.pipelined},
+                   {"subdivision", d.subdivision},
+                   {"persp", d.persp},
+                   {"quadratic", d.quadratic},
+                   {"fallback", d.fallback},
+                   {"rtl", has_rtl(d)},
+                   {"unit_parameters", has_rtl(d) && rtl_top(d) == RtlTop::ScanUnit
+                                           ? unit_parameter_list(unit_parameters({&d}))
+                                           : ""},
+                   {"sized_widths", d.sized_widths},
+                   {"sweep_axes", d.sweep_axes},
+                   {"sweep_grid", d.sweep_grid}});
+  return out;
+}
+
 int dispatch(Cli& cli) {
   if (*cli.bench_command) return bench_command(cli.bench, cli.bench_seconds);
   if (*cli.widths_command) return widths_command(cli.widths, cli.sv_path);
@@ -233,6 +257,7 @@ int dispatch(Cli& cli) {
   if (*cli.designs_command) {
     for (const Design& d : all_designs())
       fmt::print("{:<17} {}{}\n", d.name, d.summary, has_rtl(d) ? "" : " [model only: no RTL yet]");
+    if (!cli.designs_json_path.empty()) write_file_atomic(cli.designs_json_path, designs_json().dump(2) + '\n');
     return 0;
   }
   return run_command(cli.run, cli.json_path, cli.show_worst, cli.run_area, cli.dump_path, cli.flagged_path,

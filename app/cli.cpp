@@ -45,7 +45,10 @@ std::unique_ptr<Cli> make_cli() {
   cli->vectors_command = rtl::add_vectors_command(app, cli->vectors);
   cli->sweep_command = add_sweep_command(app, cli->sweep);
   cli->merge_command = add_merge_command(app, cli->merge);
-  cli->designs_command = app.add_subcommand("designs", "list the designs");
+  cli->designs_command = app.add_subcommand("designs", "list the designs (model/designs.def)");
+  cli->designs_command->add_option("--json", cli->designs_json_path,
+                                   "also write each design's kind, options, RTL, sized widths and default sweep "
+                                   "axes as JSON to this file");
   cli->hard_cases_command =
       app.add_subcommand("hard-cases", "list the named hard cases (--scene hard:NAME, hard:all)");
   cli->render_command = add_render_command(app, cli->render);

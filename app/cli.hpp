@@ -24,6 +24,7 @@ struct Cli {
   // What the options parse into, per subcommand.
   CommonOptions run, bench, widths;
   std::string json_path;       // run --json
+  std::string designs_json_path;  // designs --json
   bool show_worst = false;     // run --worst
   std::string dump_path;       // run --dump
   std::string flagged_path;    // run --flagged

@@ -21,31 +21,6 @@ namespace cdsim {
 
 namespace {
 
-// The widths sizing may change, per kind of design, in the order they are
-// sized. The output format, subpixel bits and input formats are the unit's
-// interface and stay as the user set them.
-std::vector<std::string> sized_parameters(const Design& d) {
-  switch (d.kind) {
-    case Design::Kind::ConstantDepth: {
-      std::vector<std::string> p = {"q_bits", "plane_bits", "recip_bits", "g_frac",
-                                    "t_int",  "t_frac",     "s_int",      "s_frac"};
-      if (d.correction) p.push_back("d_frac");
-      if (d.persp) p.insert(p.end(), {"persp_table_log2", "eps_int", "eps_frac", "persp_frac"});
-      return p;
-    }
-    case Design::Kind::Divide: return {"q_bits", "plane_bits", "recip_bits"};
-    case Design::Kind::Kim: return {"q_bits", "plane_bits", "kim_frac"};
-    case Design::Kind::Affine:
-      if (d.subdivision == 0) return {"t_int", "s_int", "s_frac"};
-      return {"q_bits", "plane_bits", "recip_bits", "t_int", "s_frac"};
-    case Design::Kind::Adaptive:
-      // The bound costs cycles, not area: the loosest that meets the target.
-      return {"q_bits", "recip_bits", "adapt_depth", "adapt_uv_extra", "t_int", "s_int", "s_frac",
-              "adapt_bound_frac"};
-  }
-  return {};
-}
-
 const ParamInfo& info(const std::string& name) {
   for (const auto& p : param_table())
     if (name == p.name) return p;
@@ -56,7 +31,7 @@ const ParamInfo& info(const std::string& name) {
 // for the widths sizing changes; the others stay as the user set them, so
 // that a design's result names only what its hardware depends on.
 Widths widest(Widths w, const Design& design) {
-  const std::vector<std::string> sized = sized_parameters(design);
+  const std::vector<std::string>& sized = design.sized_widths;
   for (const auto& [name, value] : std::vector<std::pair<std::string, int>>{
            {"q_bits", 32}, {"plane_bits", 48}, {"g_frac", 30}, {"recip_bits", 32}, {"t_int", 20},
            {"t_frac", 24}, {"s_int", 20}, {"s_frac", 24}, {"d_frac", 24}, {"kim_frac", 16},
@@ -116,7 +91,7 @@ Sizing size_design(const Design& design, const std::vector<const PreparedScene*>
   for (const DesignResult& r : widest_results) allowed.push_back(r.flagged_triangles);
   // Error falls as a width grows, so a binary search suffices; the final run
   // below confirms the combination.
-  for (const std::string& name : sized_parameters(design)) {
+  for (const std::string& name : design.sized_widths) {
     const ParamInfo& p = info(name);
     int lo = p.min_value, hi = w.*(p.field);
     while (lo < hi) {

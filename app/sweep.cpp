@@ -62,46 +62,18 @@ std::vector<Config> product_configs(const std::vector<Design>& designs,
 }
 
 // The default sweep: for each design, one-dimensional sweeps of the widths
-// that decide its accuracy, around the defaults (440 configurations; 352 before cd-linear-div and cd-persp-div, 343 before adaptive, 298 before quad-subN, 251 before cd-persp).
+// that decide its accuracy, around the defaults, or the grid of them
+// (model/designs.def: sweep_axes, sweep_grid). 440 configurations; 352
+// before cd-linear-div and cd-persp-div, 343 before adaptive, 298 before
+// quad-subN, 251 before cd-persp.
 std::vector<Config> default_configs() {
-  const std::vector<SweepAxis> constant_depth = {
-      {"g_frac", {6, 8, 10, 12, 14, 16, 18, 20}},
-      {"s_frac", {8, 10, 12, 14, 16, 18, 20, 22, 24}},
-      {"out_frac", {2, 4, 6, 8, 10, 12}}};
-  const std::vector<SweepAxis> correction = {{"d_frac", {2, 4, 6, 8, 10, 12}}};
-  const std::vector<SweepAxis> persp = {{"d_frac", {14, 16}},
-                                        {"persp_table_log2", {0, 1, 2, 3, 5, 6}},
-                                        {"eps_frac", {8, 10, 12, 14, 18}},
-                                        {"persp_frac", {8, 10, 12, 14, 18}}};
-  const std::vector<SweepAxis> fallback = {{"fallback_gaps_log2", {0, 2, 3, 4, 6, 8}}};
-  const std::vector<SweepAxis> divide = {{"recip_bits", {8, 10, 12, 14, 16, 18, 20, 22, 24}},
-                                         {"out_frac", {2, 4, 6, 8, 10, 12}}};
-  // Kim-style: the full grid of fraction bits and unrolling, so that its
-  // Pareto front is its best at every error level.
-  const std::vector<SweepAxis> kim = {{"kim_frac", {1, 2, 3, 4, 6, 8, 10, 12}},
-                                      {"kim_unroll", {1, 2, 4, 8}}};
-  const std::vector<SweepAxis> affine = {{"s_frac", {8, 10, 12, 14, 16, 18, 20, 22, 24}},
-                                         {"out_frac", {2, 4, 6, 8, 10, 12}}};
-  const std::vector<SweepAxis> adaptive = {{"adapt_bound_frac", {0, 2, 6, 8}},
-                                           {"adapt_depth", {0, 1, 2}},
-                                           {"adapt_uv_extra", {0, 2}}};
   std::vector<Config> configs;
   for (const Design& d : all_designs()) {
     std::vector<SweepAxis> axes;
-    switch (d.kind) {
-      case Design::Kind::ConstantDepth:
-        axes = constant_depth;
-        if (d.correction) axes.insert(axes.end(), correction.begin(), correction.end());
-        if (d.persp) axes.insert(axes.end(), persp.begin(), persp.end());
-        if (d.fallback) axes.insert(axes.end(), fallback.begin(), fallback.end());
-        break;
-      case Design::Kind::Divide: axes = divide; break;
-      case Design::Kind::Kim: {
-        for (const Config& c : product_configs({d}, kim)) configs.push_back(c);
-        continue;
-      }
-      case Design::Kind::Affine: axes = affine; break;
-      case Design::Kind::Adaptive: axes = adaptive; break;
+    for (const std::string& text : d.sweep_axes) axes.push_back(parse_axis(text));
+    if (d.sweep_grid) {
+      for (const Config& c : product_configs({d}, axes)) configs.push_back(c);
+      continue;
     }
     for (const SweepAxis& axis : axes)
       for (int value : axis.values) {

@@ -3,41 +3,104 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <map>
+#include <sstream>
 #include <stdexcept>
+
+#include "widths.hpp"
 
 namespace cdsim {
 
-const std::vector<Design>& all_designs() {
-  using K = Design::Kind;
-  static const std::vector<Design> designs = {
-      {"cd-none", K::ConstantDepth, 1, false, false, 0, "constant-depth lines, no correction"},
-      {"cd-linear", K::ConstantDepth, 1, true, false, 0, "constant-depth lines, linear correction"},
-      {"cd-dense2", K::ConstantDepth, 2, false, false, 0, "2 lines per pixel, no correction"},
-      {"cd-dense4", K::ConstantDepth, 4, false, false, 0, "4 lines per pixel, no correction"},
-      {"cd-dense2-linear", K::ConstantDepth, 2, true, false, 0, "2 lines per pixel, linear correction"},
-      {"cd-persp", K::ConstantDepth, 1, true, false, 0,
-       "constant-depth lines, perspective-correct correction (eps per line, a small 1/(1+x) table)", true},
-      {"cd-linear-div", K::ConstantDepth, 1, true, false, 0,
-       "cd-linear, and divide's per-pixel datapath for triangles near their horizon", false, false, true},
-      {"cd-persp-div", K::ConstantDepth, 1, true, false, 0,
-       "cd-persp, and divide's per-pixel datapath for triangles near their horizon", true, false, true},
-      {"divide", K::Divide, 1, false, false, 0, "exact per-pixel reciprocal, one pixel per clock"},
-      {"kim-iter", K::Kim, 1, false, false, 0,
-       "Kim-style: midpoint integer part, iterative restoring-division fraction (reconstruction)"},
-      {"kim-pipe", K::Kim, 1, false, true, 0,
-       "Kim-style: midpoint integer part, pipelined restoring-division fraction (reconstruction)"},
-      {"affine-sub16", K::Affine, 1, false, false, 16, "exact divide every 16 pixels, affine between"},
-      {"affine-sub8", K::Affine, 1, false, false, 8, "exact divide every 8 pixels, affine between"},
-      {"quad-sub16", K::Affine, 1, false, false, 16,
-       "exact divide at the start, middle and end of every 16-pixel segment, quadratic between", false, true},
-      {"quad-sub8", K::Affine, 1, false, false, 8,
-       "exact divide at the start, middle and end of every 8-pixel segment, quadratic between", false, true},
-      {"quad-sub32", K::Affine, 1, false, false, 32,
-       "exact divide at the start, middle and end of every 32-pixel segment, quadratic between", false, true},
-      {"adaptive", K::Adaptive, 1, false, false, 0,
-       "Kamen & Shirman: split in four at edge midpoints while the edge error exceeds a bound, affine per leaf"},
-      {"affine", K::Affine, 1, false, false, 0, "plain affine interpolation of u, v (not perspective-correct)"},
+namespace {
+
+std::vector<std::string> words(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string w; in >> w;) out.push_back(w);
+  return out;
+}
+
+// A row's set names, each replaced by its set's words.
+std::vector<std::string> expand(const std::map<std::string, std::string>& sets, const char* names,
+                                const char* what, const char* design) {
+  std::vector<std::string> out;
+  for (const std::string& name : words(names)) {
+    const auto it = sets.find(name);
+    if (it == sets.end())
+      throw std::logic_error(fmt::format("designs.def: design {} names no {} set {}", design, what, name));
+    for (std::string& w : words(it->second)) out.push_back(std::move(w));
+  }
+  return out;
+}
+
+std::vector<Design> design_table() {
+  const std::map<std::string, std::string> width_sets = {
+#define CDSIM_WIDTH_SET(set, widths) {#set, widths},
+#define CDSIM_AXIS_SET(set, axes)
+#define CDSIM_DESIGN(...)
+#include "designs.def"
+#undef CDSIM_DESIGN
+#undef CDSIM_AXIS_SET
+#undef CDSIM_WIDTH_SET
   };
+  const std::map<std::string, std::string> axis_sets = {
+#define CDSIM_WIDTH_SET(set, widths)
+#define CDSIM_AXIS_SET(set, axes) {#set, axes},
+#define CDSIM_DESIGN(...)
+#include "designs.def"
+#undef CDSIM_DESIGN
+#undef CDSIM_AXIS_SET
+#undef CDSIM_WIDTH_SET
+  };
+  std::vector<Design> designs;
+  const auto add = [&](const char* name, Design::Kind kind, int density, bool correction, bool pipelined,
+                       int subdivision, bool persp, bool quadratic, bool fallback, const char* sized,
+                       const char* sweep, bool sweep_grid, const char* summary) {
+    Design d;
+    d.name = name;
+    d.kind = kind;
+    d.density = density;
+    d.correction = correction;
+    d.pipelined = pipelined;
+    d.subdivision = subdivision;
+    d.summary = summary;
+    d.persp = persp;
+    d.quadratic = quadratic;
+    d.fallback = fallback;
+    d.sized_widths = expand(width_sets, sized, "width", name);
+    for (const std::string& width : d.sized_widths)
+      if (std::none_of(param_table().begin(), param_table().end(),
+                       [&](const ParamInfo& p) { return width == p.name; }))
+        throw std::logic_error(fmt::format("designs.def: design {} sizes {}, which widths.def lacks", name, width));
+    d.sweep_axes = expand(axis_sets, sweep, "axis", name);
+    d.sweep_grid = sweep_grid;
+    designs.push_back(std::move(d));
+  };
+#define CDSIM_WIDTH_SET(set, widths)
+#define CDSIM_AXIS_SET(set, axes)
+#define CDSIM_DESIGN(name, kind, ...) add(name, Design::Kind::kind, __VA_ARGS__);
+#include "designs.def"
+#undef CDSIM_DESIGN
+#undef CDSIM_AXIS_SET
+#undef CDSIM_WIDTH_SET
+  return designs;
+}
+
+}  // namespace
+
+const char* kind_name(Design::Kind kind) {
+  switch (kind) {
+    case Design::Kind::ConstantDepth: return "constant_depth";
+    case Design::Kind::Divide: return "divide";
+    case Design::Kind::Kim: return "kim";
+    case Design::Kind::Affine: return "affine";
+    case Design::Kind::Adaptive: return "adaptive";
+  }
+  return "unknown";
+}
+
+const std::vector<Design>& all_designs() {
+  static const std::vector<Design> designs = design_table();
   return designs;
 }
 

@@ -38,8 +38,17 @@ struct Design {
   // its horizon is walked by divide's per-pixel datapath instead of the
   // table (docs/robustness.md, "The divide fallback").
   bool fallback = false;
+  // The widths its accuracy depends on, in the order `cdsim size` sizes them.
+  std::vector<std::string> sized_widths;
+  // The default sweep's axes, as a sweep file writes them ("g_frac=6:20:2"),
+  // each on its own around the defaults or, with sweep_grid, in every combination.
+  std::vector<std::string> sweep_axes;
+  bool sweep_grid = false;
 };
 
+// "constant_depth", "divide", "kim", "affine", "adaptive".
+const char* kind_name(Design::Kind kind);
+// The designs of model/designs.def, in its order.
 const std::vector<Design>& all_designs();
 // The RTL top that implements a design: the scan unit (rtl/cd_scan_unit.sv,
 // one or several designs by parameter and kind_i), or the adaptive design's

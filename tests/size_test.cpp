@@ -1,10 +1,13 @@
 // Sizing (app/size.cpp) against independent evaluations of the model.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "design.hpp"
 #include "evaluate.hpp"
 #include "scene.hpp"
 #include "size.hpp"
+#include "sweep_file.hpp"
 #include "widths.hpp"
 
 namespace cdsim {
@@ -176,6 +179,36 @@ TEST(Size, ShrinkSetupKeepsTheRate) {
     }
   }
   ASSERT_LT(rate_at(choices.front()), between) << "the scene must separate M = 1 from the fastest shared engine";
+}
+
+// model/designs.def's sized widths are the widths a design's accuracy
+// depends on: against the evaluation itself, each one narrowed to its
+// minimum on the default scene at a sixteenth of its pixels changes the
+// design's error or cycles (eps_int, whose default is its minimum, has
+// nothing narrower to try); and its sweep axes parse as a sweep file's.
+TEST(DesignTable, EverySizedWidthMovesTheDesignsResults) {
+  const Widths defaults;
+  SceneOptions small;
+  small.resolution = "480x270";
+  const PreparedScene scene = prepare(load_scene("default", small), defaults);
+  for (const Design& design : all_designs()) {
+    ASSERT_FALSE(design.sized_widths.empty()) << design.name;
+    ASSERT_FALSE(design.sweep_axes.empty()) << design.name;
+    for (const std::string& axis : design.sweep_axes) EXPECT_NO_THROW(parse_axis(axis)) << design.name << " " << axis;
+    const DesignResult base = evaluate(scene, design, defaults);
+    for (const std::string& name : design.sized_widths) {
+      const auto info = std::find_if(param_table().begin(), param_table().end(),
+                                     [&](const ParamInfo& p) { return name == p.name; });
+      ASSERT_NE(info, param_table().end()) << design.name << " sizes " << name;
+      if (info->min_value == info->default_value) continue;
+      const int value = info->min_value;
+      Widths moved = defaults;
+      set_param(moved, name, value);
+      const DesignResult r = evaluate(scene, design, moved);
+      EXPECT_TRUE(r.error.max != base.error.max || r.error.mean != base.error.mean || r.cycles != base.cycles)
+          << design.name << ": " << name << " = " << value << " changes nothing";
+    }
+  }
 }
 
 }  // namespace
