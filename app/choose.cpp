@@ -160,6 +160,32 @@ int run_choose_command(const ChooseOptions& options) {
              options.settings.empty() ? "defaults" : describe(user), build_id());
   std::fflush(stdout);
 
+  // A candidate's cycles, pixels and slowest scene, from its results per scene.
+  const auto take_rates = [&](Candidate& c, const std::vector<DesignResult>& results) {
+    c.cycles = total(results, &DesignResult::cycles);
+    c.pixels = total(results, &DesignResult::pixels);
+    c.min_px_per_clk = std::numeric_limits<double>::infinity();
+    for (size_t i = 0; i < results.size(); ++i)
+      if (results[i].pixels_per_clock() < c.min_px_per_clk) {
+        c.min_px_per_clk = results[i].pixels_per_clock();
+        c.slowest_scene = scenes[i].scene.name;
+      }
+    c.meets_rate = c.min_px_per_clk >= options.min_rate;
+  };
+  const auto take_area = [&](Candidate& c, const AreaReport& area) {
+    c.area = area;
+    c.meets_clock = c.area->fmax_mhz >= options.clock_mhz;
+    c.total_area_um2 = c.area->logic_area_um2;
+    c.table.clear();
+    if (c.area->sram_bits > 0) {
+      const bool flops = c.area->flop_table_area_um2 < c.area->sram_area_um2;
+      c.table = flops ? "flops" : "sram";
+      c.total_area_um2 += flops ? c.area->flop_table_area_um2 : c.area->sram_area_um2;
+    }
+  };
+  const bool user_sets_pipeline = std::any_of(options.settings.begin(), options.settings.end(),
+                                              [](const std::string& s) { return s.rfind("correction_stages=", 0) == 0; });
+
   // Size every design; for a table design, shrink the table while banding
   // keeps the cycles within the budget (shrink_table). The designs are sized
   // independently, `--jobs` at a time.
@@ -184,15 +210,7 @@ int run_choose_command(const ChooseOptions& options) {
     c.meets = sizing.reachable && sizing.error <= target.max_error;
     c.widths = sizing.widths;
     c.error = sizing.error;
-    c.cycles = total(sizing.results, &DesignResult::cycles);
-    c.pixels = total(sizing.results, &DesignResult::pixels);
-    c.min_px_per_clk = std::numeric_limits<double>::infinity();
-    for (size_t i = 0; i < sizing.results.size(); ++i)
-      if (sizing.results[i].pixels_per_clock() < c.min_px_per_clk) {
-        c.min_px_per_clk = sizing.results[i].pixels_per_clock();
-        c.slowest_scene = scenes[i].scene.name;
-      }
-    c.meets_rate = c.min_px_per_clk >= options.min_rate;
+    take_rates(c, sizing.results);
     seconds[k] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     evaluations[k] = sizing.evaluations;
   }, ProgressShown::Always);
@@ -215,13 +233,40 @@ int run_choose_command(const ChooseOptions& options) {
       c.rtl_verified = "no RTL";
       continue;
     }
-    c.area = areas[a++];
-    c.meets_clock = c.area->fmax_mhz >= options.clock_mhz;
-    c.total_area_um2 = c.area->logic_area_um2;
-    if (c.area->sram_bits > 0) {
-      const bool flops = c.area->flop_table_area_um2 < c.area->sram_area_um2;
-      c.table = flops ? "flops" : "sram";
-      c.total_area_um2 += flops ? c.area->flop_table_area_um2 : c.area->sram_area_um2;
+    take_area(c, areas[a++]);
+  }
+  // The pipelining: a table design that misses the clock tries the correction
+  // adder's register (correction_stages 1, unless the user set it). The values
+  // are the same; its scenes run again for the cycle a triangle it adds, and
+  // it is synthesised again. It is taken if it keeps the rate and its f_max
+  // is higher.
+  std::vector<size_t> retried;
+  std::vector<AreaJob> pipelined_jobs;
+  std::vector<Candidate> pipelined;
+  for (size_t i = 0; i < candidates.size(); ++i) {
+    const Candidate& c = candidates[i];
+    if (options.clock_mhz <= 0 || user_sets_pipeline || !c.area || c.meets_clock ||
+        c.design.kind != Design::Kind::ConstantDepth || c.widths.correction_stages != 0)
+      continue;
+    Candidate p = c;
+    p.widths.correction_stages = 1;
+    std::vector<DesignResult> results;
+    for (const PreparedScene* scene : scene_list)
+      results.push_back(evaluate(*scene, p.design, p.widths, /*measure_error=*/false, nullptr, threads));
+    take_rates(p, results);
+    if (!p.meets_rate) continue;
+    retried.push_back(i);
+    pipelined_jobs.push_back({p.design, p.widths});
+    pipelined.push_back(p);
+  }
+  if (!pipelined_jobs.empty()) {
+    fmt::print(stderr, "choose: {} design(s) below {:g} MHz synthesised again with correction_stages=1\n",
+               pipelined_jobs.size(), options.clock_mhz);
+    const std::vector<AreaReport> pipelined_areas = synthesise_areas(pipelined_jobs, area_options, options.jobs);
+    for (size_t k = 0; k < retried.size(); ++k) {
+      take_area(pipelined[k], pipelined_areas[k]);
+      if (pipelined[k].area->fmax_mhz > candidates[retried[k]].area->fmax_mhz)
+        candidates[retried[k]] = pipelined[k];
     }
   }
   // Ranked: designs that meet every target with an area, by area then

@@ -106,6 +106,7 @@ TrianglePhases UnitTiming::phases(const TriangleWork& work) const {
         b.read_lag = std::max(b.read_lag, b.fill - b.walk + 1);
         p.bands.push_back(b);
       }
+      p.drain = widths_.correction_stages;
       break;
     }
     case Design::Kind::Divide:
@@ -189,7 +190,8 @@ TriangleCycles UnitSchedule::next(const TrianglePhases& phases, int64_t offered_
         waits = bank_done + 1;
       }
       fill_end = decided;
-      record = waits;
+      c.walk += phases.drain;
+      record = waits + phases.drain;
       break;
     }
   }

@@ -91,6 +91,9 @@ struct TrianglePhases {
   int64_t scan = 0;          // Scan: one cycle per column
   int64_t walk = 0;          // Walk: the walker and the datapath, drain included
   std::vector<Band> bands;   // Bands: in fill order
+  // Bands: after the last band's walk, the correction adder's pipeline
+  // registers empty (correction_stages cycles) before the record.
+  int64_t drain = 0;
 };
 
 // A triangle's clocks (the attribution above), by what bound them.

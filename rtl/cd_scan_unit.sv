@@ -197,6 +197,13 @@ module cd_scan_unit #(
   // in any cycle whose table read needs a line not yet written (the table is
   // then read and written in the same cycle: a two-port SRAM).
   localparam bit EarlyWalk    = `CD_EARLY_WALK != 0;
+  // correction_stages: pipeline registers in the correction adder. A table
+  // pixel then leaves correction_adder's register, behind the walker, as a
+  // per-pixel design's leaves its pipeline: the walker issues a pixel each
+  // cycle, the fragment is offered CorrStages cycles later, its pixel and
+  // flags counted when it is taken, and the last band ends in StDrain.
+  localparam int CorrStages   = `CD_CORRECTION_STAGES;
+  localparam bit TablePipe    = HasTable && CorrStages > 0;
 
   // Front: accepts a triangle and runs the setup engine. Fill: fills the table
   // band by band, into the next of TableBanks banks once the walker is done
@@ -489,6 +496,8 @@ module cd_scan_unit #(
   logic [AddrBits-1:0] own_addr, neighbour_addr;
   logic signed [OutBits-1:0] table_u, table_v;
   logic [7:0]          table_flags;
+  logic                table_valid;                 // the correction adder's output holds a pixel
+  logic [2*PixelBits-1:0] table_tag;               // its major and minor index
 
   if (HasTable) begin : gen_table
     // One scanline_table per bank: the fill writes one while the walker reads
@@ -525,10 +534,19 @@ module cd_scan_unit #(
       assign neighbour_entry = neighbour_bank;
     end
 
+    // With CorrStages > 0 the adder's register moves with the back (not while
+    // held or starved) and the pixel's indices move beside it.
+    logic table_issue, table_advance;
+    assign table_issue = state_q == StPixel && !per_pixel && (!TablePipe || !starve);
+    assign table_advance = !hold && !starve;
     correction_adder #(
-      .HasCorrection(HasCorrection), .HasPersp(Persp)
+      .HasCorrection(HasCorrection), .HasPersp(Persp), .Stages(CorrStages)
     ) u_correction_adder (
-      .valid_i           (state_q == StPixel && !per_pixel),
+      .clk_i,
+      .rst_ni,
+      .advance_i         (table_advance),
+      .valid_i           (table_issue),
+      .valid_o           (table_valid),
       .own_entry_i       (own_entry),
       .neighbour_entry_i (neighbour_entry),
       .correct_i         (correction_q && direction_q != 2'sd0),
@@ -540,12 +558,21 @@ module cd_scan_unit #(
       .v_o               (table_v),
       .flags_o           (table_flags)
     );
+    if (TablePipe) begin : gen_table_tag
+      always_ff @(posedge clk_i) begin
+        if (table_advance && table_issue) table_tag <= {major_q, minor_q};
+      end
+    end else begin : gen_no_table_tag
+      assign table_tag = {major_q, minor_q};
+    end
   end else begin : gen_no_table
     logic unused_table_addr;
     assign unused_table_addr = ^{own_addr, neighbour_addr, persp_q};
     assign table_u = '0;
     assign table_v = '0;
     assign table_flags = '0;
+    assign table_valid = 1'b0;
+    assign table_tag = '0;
   end
 
   // Per-pixel designs: the plane walker feeds the pixel pipeline, which a
@@ -1212,7 +1239,7 @@ module cd_scan_unit #(
 
     last_column = (PixelBits+1)'(offset_q) == major_count - (PixelBits+1)'(1);
     span_ahead = !mode_kim && !mode_sub;
-    pixel_moves = mode_divide || (mode_kim && kim_handoff) ||
+    pixel_moves = mode_divide || (TablePipe && !per_pixel) || (mode_kim && kim_handoff) ||
                   (!mode_kim && frag_ready_i && (!mode_sub || sub_valid));
 
     unique case (state_q)
@@ -1254,7 +1281,7 @@ module cd_scan_unit #(
         // to COLUMN: their span start takes the walker's column cycle.
         if (pixel_moves) begin
           pixel_issue = mode_divide;
-          if (!mode_divide && !mode_kim) begin
+          if (!mode_divide && !mode_kim && !(TablePipe && !per_pixel)) begin
             pixels_d = pixels_q + CountBits'(1);
             flags_d = flags_q | frag_flags;
           end
@@ -1288,7 +1315,7 @@ module cd_scan_unit #(
         count_d = count_q + StepCountBits'(1);
         if (mode_kim) begin
           if (kim_drained) state_d = StRecord;
-        end else if (count_q == StepCountBits'(RecipLatency - 1)) begin
+        end else if (count_q == StepCountBits'((TablePipe && !per_pixel ? CorrStages : RecipLatency) - 1)) begin
           state_d = StRecord;
         end
       end
@@ -1331,10 +1358,18 @@ module cd_scan_unit #(
         state_d = StFillWait;
         flags_d[FlagBanded] = 1'b1;
       end else begin
-        state_d = StRecord;
+        // The correction adder's register empties first.
+        state_d = TablePipe ? StDrain : StRecord;
+        count_d = '0;
       end
     end
 
+    // A table fragment taken from the correction adder's register (flags_d:
+    // the band's end may have set banded in this cycle).
+    if (TablePipe && !per_pixel && table_valid && !starve && frag_ready_i) begin
+      pixels_d = pixels_q + CountBits'(1);
+      flags_d = flags_d | frag_flags;
+    end
     // A per-pixel fragment taken.
     if (mode_divide && pipe_valid && frag_ready_i) begin
       pixels_d = pixels_q + CountBits'(1);
@@ -1575,9 +1610,12 @@ module cd_scan_unit #(
   // ---------------------------------------------------------------- outputs
   logic [PixelBits-1:0] frag_major, frag_minor;
   assign frag_major = mode_divide ? pipe_tag[PixelBits +: PixelBits] :
-                      mode_kim ? kim_tag[PixelBits +: PixelBits] : major_q;
-  assign frag_minor = mode_divide ? pipe_tag[0 +: PixelBits] : mode_kim ? kim_tag[0 +: PixelBits] : minor_q;
+                      mode_kim ? kim_tag[PixelBits +: PixelBits] :
+                      !per_pixel ? table_tag[PixelBits +: PixelBits] : major_q;
+  assign frag_minor = mode_divide ? pipe_tag[0 +: PixelBits] : mode_kim ? kim_tag[0 +: PixelBits] :
+                      !per_pixel ? table_tag[0 +: PixelBits] : minor_q;
   assign frag_valid_o = mode_divide ? pipe_valid : mode_kim ? kim_valid :
+                        TablePipe && !per_pixel ? table_valid && !starve :
                         state_q == StPixel && (!mode_sub || sub_valid) && !starve;
   assign frag_x_o = setup_x_major ? 16'(frag_major) : 16'(frag_minor);
   assign frag_y_o = setup_x_major ? 16'(frag_minor) : 16'(frag_major);

@@ -6,8 +6,12 @@
 // r ~ 1 / (1 + |d| e) from a ROM of 1/m and a chord (docs/designs.md,
 // "cd-persp"). Twin of model/correction_adder.hpp and of line_value in
 // model/column_walker.hpp, at the widths of model/derived_widths.cpp.
-// Combinational (one cycle with the table read; cd-persp's weight adds three
-// multiplies to that path: docs/rtl.md); evaluated only while valid_i.
+// With Stages = 0 combinational (one cycle with the table read; cd-persp's
+// weight adds three multiplies to that path: docs/rtl.md); with Stages = 1 a
+// pipeline register (correction_stages) holds the line values, the weight and
+// what the flags need, and the correction, rounding and saturation follow in
+// the next cycle, from valid_o. Evaluated only while valid_i (and, after the
+// register, while valid_o).
 `include "cd_widths.svh"
 `default_nettype none
 
@@ -16,8 +20,13 @@ module correction_adder #(
   // cd-persp's weight (eps in the word, its ROM and multiplies), chosen per
   // pixel by persp_i.
   parameter bit HasPersp = 1'b0,
+  // Pipeline registers between the weight and the correction: 0 or 1.
+  parameter int Stages = 0,
   localparam int WordBits = HasPersp ? `CD_PERSP_WORD_BITS : `CD_WORD_BITS
 ) (
+  input  logic                          clk_i,
+  input  logic                          rst_ni,
+  input  logic                          advance_i,  // the register loads (a held unit keeps it)
   input  logic                          valid_i,
   input  logic [WordBits-1:0]           own_entry_i,
   input  logic [WordBits-1:0]           neighbour_entry_i,
@@ -29,6 +38,7 @@ module correction_adder #(
   // k + direction_i (+1 or -1).
   input  logic                          persp_i,
   input  logic signed [1:0]             direction_i,
+  output logic                          valid_o,    // u_o, v_o and flags_o hold a pixel
   output logic signed [`CD_OUT_BITS-1:0] u_o,
   output logic signed [`CD_OUT_BITS-1:0] v_o,
   output logic [7:0]                    flags_o
@@ -222,10 +232,10 @@ module correction_adder #(
     assign unused_eps = ^{own_entry_i[WordBits-1:`CD_WORD_BITS], neighbour_entry_i[WordBits-1:`CD_WORD_BITS]};
   end
 
+  // ---- before the register: the line values and what the correction needs
   logic signed [ValueBits-1:0] own_u, own_v, other_u, other_v;
-  logic signed [SumBits-1:0]   sum_u, sum_v;
   logic                        neighbour_usable;
-  logic                        saturated_u, saturated_v;
+  logic                        own_saturated, own_depth_range, dropped, eps_saturated_used;
 
   always_comb begin
     own_u = '0;
@@ -233,8 +243,10 @@ module correction_adder #(
     other_u = '0;
     other_v = '0;
     neighbour_usable = 1'b0;
-    sum_u = '0;
-    sum_v = '0;
+    own_saturated = 1'b0;
+    own_depth_range = 1'b0;
+    dropped = 1'b0;
+    eps_saturated_used = 1'b0;
     if (valid_i) begin
       own_u = line_value(own_entry_i[`CD_WORD_TU_LSB +: TBits], own_entry_i[`CD_WORD_SU_LSB +: SBits], offset_i);
       own_v = line_value(own_entry_i[`CD_WORD_TV_LSB +: TBits], own_entry_i[`CD_WORD_SV_LSB +: SBits], offset_i);
@@ -245,29 +257,73 @@ module correction_adder #(
       // A flagged neighbour is never used: it would spread a bad value.
       neighbour_usable = HasCorrection && correct_i && !neighbour_entry_i[`CD_WORD_SATURATED_BIT] &&
                          !neighbour_entry_i[`CD_WORD_DEPTH_RANGE_BIT];
-      sum_u = SumBits'(own_u);
-      sum_v = SumBits'(own_v);
-      if (neighbour_usable) begin
-        sum_u = corrected(own_u, other_u, applied_weight);
-        sum_v = corrected(own_v, other_v, applied_weight);
+      own_saturated = own_entry_i[`CD_WORD_SATURATED_BIT];
+      own_depth_range = own_entry_i[`CD_WORD_DEPTH_RANGE_BIT];
+      dropped = HasCorrection && correct_i && !neighbour_usable;
+      // A saturated eps counts where it is used: a pixel corrected with it.
+      eps_saturated_used = neighbour_usable && eps_used_saturated;
+    end
+  end
+
+  // ---- the register (Stages = 1), or wires
+  localparam int StageBits = 4 * ValueBits + AppliedBits + 5;
+  logic [StageBits-1:0]        stage_d, stage_q;
+  logic signed [ValueBits-1:0] s_own_u, s_own_v, s_other_u, s_other_v;
+  logic [AppliedBits-1:0]      s_weight;
+  logic                        s_valid, s_usable, s_saturated, s_depth_range, s_dropped, s_eps_saturated;
+  assign stage_d = {own_u, own_v, other_u, other_v, applied_weight, neighbour_usable, own_saturated,
+                    own_depth_range, dropped, eps_saturated_used};
+  if (Stages > 0) begin : gen_stage
+    logic valid_q;
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) valid_q <= 1'b0;
+      else if (advance_i) valid_q <= valid_i;
+    end
+    // Loaded only with a pixel: between pixels the register keeps its last
+    // one, unread (valid_o is low).
+    always_ff @(posedge clk_i) begin
+      if (advance_i && valid_i) stage_q <= stage_d;
+    end
+    assign s_valid = valid_q;
+  end else begin : gen_no_stage
+    logic unused_clock;
+    assign unused_clock = ^{clk_i, rst_ni, advance_i};
+    assign stage_q = stage_d;
+    assign s_valid = valid_i;
+  end
+  assign {s_own_u, s_own_v, s_other_u, s_other_v, s_weight, s_usable, s_saturated, s_depth_range, s_dropped,
+          s_eps_saturated} = stage_q;
+  assign valid_o = s_valid;
+
+  // ---- after it: the correction, rounding and saturation
+  logic signed [SumBits-1:0]   sum_u, sum_v;
+  logic                        saturated_u, saturated_v;
+
+  always_comb begin
+    sum_u = '0;
+    sum_v = '0;
+    if (s_valid) begin
+      sum_u = SumBits'(s_own_u);
+      sum_v = SumBits'(s_own_v);
+      if (s_usable) begin
+        sum_u = corrected(s_own_u, s_other_u, s_weight);
+        sum_v = corrected(s_own_v, s_other_v, s_weight);
       end
     end
   end
 
   // To the output format: round to nearest (ties up), saturate, flag.
   shift_round #(.InBits(SumBits), .OutBits(OutBits), .ShiftBits(8), .MaxLeft(OutLeft))
-    u_narrow_u (.enable_i(valid_i), .in_i(sum_u), .shift_i(8'(OutShift)), .out_o(u_o), .saturated_o(saturated_u));
+    u_narrow_u (.enable_i(s_valid), .in_i(sum_u), .shift_i(8'(OutShift)), .out_o(u_o), .saturated_o(saturated_u));
   shift_round #(.InBits(SumBits), .OutBits(OutBits), .ShiftBits(8), .MaxLeft(OutLeft))
-    u_narrow_v (.enable_i(valid_i), .in_i(sum_v), .shift_i(8'(OutShift)), .out_o(v_o), .saturated_o(saturated_v));
+    u_narrow_v (.enable_i(s_valid), .in_i(sum_v), .shift_i(8'(OutShift)), .out_o(v_o), .saturated_o(saturated_v));
 
   always_comb begin
     flags_o = '0;
-    if (valid_i) begin
-      // A saturated eps counts where it is used: a pixel corrected with it.
-      flags_o[`CD_FLAG_TABLE_SATURATED] = own_entry_i[`CD_WORD_SATURATED_BIT] ||
-                                          (neighbour_usable && eps_used_saturated);
-      flags_o[`CD_FLAG_DEPTH_RANGE] = own_entry_i[`CD_WORD_DEPTH_RANGE_BIT];
-      flags_o[`CD_FLAG_NEIGHBOUR_DROPPED] = HasCorrection && correct_i && !neighbour_usable;
+    if (s_valid) begin
+      flags_o[`CD_FLAG_TABLE_SATURATED] = s_saturated || s_eps_saturated;
+      flags_o[`CD_FLAG_DEPTH_RANGE] = s_depth_range;
+      flags_o[`CD_FLAG_NEIGHBOUR_DROPPED] = s_dropped;
       flags_o[`CD_FLAG_OUTPUT_SATURATED] = saturated_u || saturated_v;
     end
   end
