@@ -236,10 +236,11 @@ int run_choose_command(const ChooseOptions& options) {
     take_area(c, areas[a++]);
   }
   // The pipelining: a table design that misses the clock tries the correction
-  // adder's register (correction_stages 1, unless the user set it). The values
-  // are the same; its scenes run again for the cycle a triangle it adds, and
-  // it is synthesised again. It is taken if it keeps the rate and its f_max
-  // is higher.
+  // adder's registers, unless the user set them: 2 for cd-persp's (the second
+  // splits its weight), 1 for the others (a second would only add latency).
+  // The values are the same; its scenes run again for the cycles a triangle
+  // they add, and it is synthesised again. It is taken if it keeps the rate
+  // and its f_max is higher.
   std::vector<size_t> retried;
   std::vector<AreaJob> pipelined_jobs;
   std::vector<Candidate> pipelined;
@@ -249,7 +250,7 @@ int run_choose_command(const ChooseOptions& options) {
         c.design.kind != Design::Kind::ConstantDepth || c.widths.correction_stages != 0)
       continue;
     Candidate p = c;
-    p.widths.correction_stages = 1;
+    p.widths.correction_stages = p.design.persp ? 2 : 1;
     std::vector<DesignResult> results;
     for (const PreparedScene* scene : scene_list)
       results.push_back(evaluate(*scene, p.design, p.widths, /*measure_error=*/false, nullptr, threads));
@@ -260,7 +261,7 @@ int run_choose_command(const ChooseOptions& options) {
     pipelined.push_back(p);
   }
   if (!pipelined_jobs.empty()) {
-    fmt::print(stderr, "choose: {} design(s) below {:g} MHz synthesised again with correction_stages=1\n",
+    fmt::print(stderr, "choose: {} design(s) below {:g} MHz synthesised again with the correction adder pipelined\n",
                pipelined_jobs.size(), options.clock_mhz);
     const std::vector<AreaReport> pipelined_areas = synthesise_areas(pipelined_jobs, area_options, options.jobs);
     for (size_t k = 0; k < retried.size(); ++k) {

@@ -559,9 +559,22 @@ module cd_scan_unit #(
       .flags_o           (table_flags)
     );
     if (TablePipe) begin : gen_table_tag
-      always_ff @(posedge clk_i) begin
-        if (table_advance && table_issue) table_tag <= {major_q, minor_q};
+      // Beside each of the adder's registers, loaded with its pixel.
+      logic [2*PixelBits-1:0] tag_q [CorrStages];
+      logic [CorrStages-1:0]  tag_valid_q;
+      always_ff @(posedge clk_i or negedge rst_ni) begin
+        if (!rst_ni) tag_valid_q <= '0;
+        else if (table_advance) begin
+          tag_valid_q[0] <= table_issue;
+          for (int k = 1; k < CorrStages; k++) tag_valid_q[k] <= tag_valid_q[k-1];
+        end
       end
+      always_ff @(posedge clk_i) begin
+        if (table_advance && table_issue) tag_q[0] <= {major_q, minor_q};
+        for (int k = 1; k < CorrStages; k++)
+          if (table_advance && tag_valid_q[k-1]) tag_q[k] <= tag_q[k-1];
+      end
+      assign table_tag = tag_q[CorrStages-1];
     end else begin : gen_no_table_tag
       assign table_tag = {major_q, minor_q};
     end

@@ -118,16 +118,28 @@ module correction_adder #(
   /* verilator lint_on UNUSEDSIGNAL */
   localparam logic [Entries*EntryBits-1:0] Rom = rom_contents();
 
-  // cd-persp's weight (zero when absent or not chosen).
-  logic [AppliedBits-1:0]      applied_weight;
+  // Three parts, with up to two registers between them (Stages):
+  //   A  the line values, what the flags need, and cd-persp's weight up to
+  //      1/(1 + x) (x = |d| e, c e, the normalisation, the ROM and its chord);
+  //   B  cd-persp's t' = |d| + c e r (the other designs: |d|);
+  //   C  the correction, the rounding to the output format and the flags.
+  // Stages = 1 registers between B and C; 2 also between A and B.
+
+  // ---- A
+  logic signed [ValueBits-1:0] own_u, own_v, other_u, other_v;
+  logic                        neighbour_usable;
+  logic                        own_saturated, own_depth_range, dropped, eps_saturated_used;
+  logic signed [CeBits-1:0]    ce;
+  logic signed [EntryBits+1:0] r;         // 1/m
+  logic signed [7:0]           t_shift;
   logic                        eps_used_saturated;
+
   if (HasPersp && HasCorrection) begin : gen_persp
     logic signed [EpsBits-1:0]           e;
     logic signed [DFrac+EpsBits+1:0]     x_product;
     logic signed [XBits-1:0]             x_rounded, x;
     logic signed [CBits-1:0]             c;
     logic signed [CBits+EpsBits-1:0]     ce_product;
-    logic signed [CeBits-1:0]            ce;
     logic [XBits-1:0]                    y;          // 1 + x > 0
     logic signed [ShiftBits-1:0]         shift;      // 1 + x = m 2^shift
     logic [PFrac-1:0]                    f;
@@ -135,11 +147,7 @@ module correction_adder #(
     logic [EntryBits-1:0]                lo, hi;
     logic signed [EntryBits+Fine+1:0]    chord_product;
     logic signed [EntryBits:0]           chord;
-    logic signed [EntryBits+1:0]         r;          // 1/m
-    logic signed [CeBits+EntryBits+1:0]  cer_product;
-    logic signed [7:0]                   t_shift;
-    logic signed [TpBits-1:0]            cer, t;
-    logic [3:0]                          rounding_saturated;  // never: the formats hold every value
+    logic [2:0]                          rounding_saturated;  // never: the formats hold every value
 
     always_comb begin
       e = '0;
@@ -190,23 +198,7 @@ module correction_adder #(
 
     always_comb begin
       r = (EntryBits+2)'($signed({1'b0, lo})) + (EntryBits+2)'(chord);
-      cer_product = (CeBits+EntryBits+2)'(ce) * (CeBits+EntryBits+2)'(r);
       t_shift = 8'(TShift) + 8'(shift);
-    end
-
-    // c e / m 2^-shift, rounded once to d_frac bits.
-    shift_round #(.InBits(CeBits+EntryBits+2), .OutBits(TpBits), .ShiftBits(8),
-                  .MaxLeft(TShift < 1 ? 1 - TShift : 0))
-      u_round_t (.enable_i(valid_i && persp_i), .in_i(cer_product), .shift_i(t_shift), .out_o(cer),
-                 .saturated_o(rounding_saturated[3]));
-
-    // t' = |d| + c e r, clamped to [0, 1], where the true t' lies.
-    always_comb begin
-      t = TpBits'($signed({1'b0, weight_i})) + cer;
-      if (t < 0) t = '0;
-      if (t > TpBits'(1 <<< DFrac)) t = TpBits'(1 <<< DFrac);
-      applied_weight = AppliedBits'($unsigned(weight_i));
-      if (persp_i) applied_weight = AppliedBits'(t);
       eps_used_saturated = persp_i && own_entry_i[`CD_WORD_EPS_SATURATED_BIT];
     end
 
@@ -221,7 +213,9 @@ module correction_adder #(
     assign unused_rounding = ^rounding_saturated;
 `endif
   end else begin : gen_linear
-    assign applied_weight = AppliedBits'(weight_i);
+    assign ce = '0;
+    assign r = '0;
+    assign t_shift = '0;
     assign eps_used_saturated = 1'b0;
     logic unused_persp;
     assign unused_persp = ^{persp_i, direction_i};
@@ -231,11 +225,6 @@ module correction_adder #(
     logic unused_eps;
     assign unused_eps = ^{own_entry_i[WordBits-1:`CD_WORD_BITS], neighbour_entry_i[WordBits-1:`CD_WORD_BITS]};
   end
-
-  // ---- before the register: the line values and what the correction needs
-  logic signed [ValueBits-1:0] own_u, own_v, other_u, other_v;
-  logic                        neighbour_usable;
-  logic                        own_saturated, own_depth_range, dropped, eps_saturated_used;
 
   always_comb begin
     own_u = '0;
@@ -265,37 +254,95 @@ module correction_adder #(
     end
   end
 
-  // ---- the register (Stages = 1), or wires
-  localparam int StageBits = 4 * ValueBits + AppliedBits + 5;
-  logic [StageBits-1:0]        stage_d, stage_q;
+  // ---- the register between A and B (Stages = 2), or wires
+  localparam int ValuesBits = 4 * ValueBits + 5;  // the line values and the flags' bits
+  localparam int ABits = ValuesBits + WeightBits + 1 + CeBits + EntryBits + 2 + 8;
+  logic [ABits-1:0]            a_d, a_q;
+  logic [ValuesBits-1:0]       a_values;
+  logic [WeightBits-1:0]       a_weight;
+  logic                        a_persp, a_valid;
+  logic signed [CeBits-1:0]    a_ce;
+  logic signed [EntryBits+1:0] a_r;
+  logic signed [7:0]           a_t_shift;
+  assign a_d = {own_u, own_v, other_u, other_v, neighbour_usable, own_saturated, own_depth_range, dropped,
+                eps_saturated_used, weight_i, persp_i, ce, r, t_shift};
+  // Each register loads only with a pixel: between pixels it keeps its last
+  // one, unread (its valid is low).
+  context_register #(.Bits(ABits), .Present(Stages > 1)) u_stage_a (
+    .clk_i, .load_i(advance_i && valid_i), .d_i(a_d), .q_o(a_q));
+  assign {a_values, a_weight, a_persp, a_ce, a_r, a_t_shift} = a_q;
+
+  // ---- B: the weight applied
+  logic [AppliedBits-1:0]      applied_weight;
+  if (HasPersp && HasCorrection) begin : gen_persp_weight
+    logic signed [CeBits+EntryBits+1:0]  cer_product;
+    logic signed [TpBits-1:0]            cer, t;
+    logic                                rounding_saturated;  // never: the formats hold every value
+    assign cer_product = a_valid && a_persp ? (CeBits+EntryBits+2)'(a_ce) * (CeBits+EntryBits+2)'(a_r) : '0;
+    // c e / m 2^-shift, rounded once to d_frac bits.
+    shift_round #(.InBits(CeBits+EntryBits+2), .OutBits(TpBits), .ShiftBits(8),
+                  .MaxLeft(TShift < 1 ? 1 - TShift : 0))
+      u_round_t (.enable_i(a_valid && a_persp), .in_i(cer_product), .shift_i(a_t_shift), .out_o(cer),
+                 .saturated_o(rounding_saturated));
+    // t' = |d| + c e r, clamped to [0, 1], where the true t' lies.
+    always_comb begin
+      t = TpBits'($signed({1'b0, a_weight})) + cer;
+      if (t < 0) t = '0;
+      if (t > TpBits'(1 <<< DFrac)) t = TpBits'(1 <<< DFrac);
+      applied_weight = AppliedBits'($unsigned(a_weight));
+      if (a_persp) applied_weight = AppliedBits'(t);
+    end
+`ifndef SYNTHESIS
+    always_comb begin
+      if (a_valid && a_persp)
+        assert (!rounding_saturated) else $error("correction_adder: cd-persp's c e r left its format");
+    end
+`else
+    logic unused_rounding;
+    assign unused_rounding = rounding_saturated;
+`endif
+  end else begin : gen_linear_weight
+    assign applied_weight = AppliedBits'(a_weight);
+    logic unused_weight;
+    assign unused_weight = ^{a_persp, a_ce, a_r, a_t_shift};
+  end
+
+  // ---- the register between B and C (Stages >= 1), or wires
+  localparam int BBits = ValuesBits + AppliedBits;
+  logic [BBits-1:0]            b_q;
   logic signed [ValueBits-1:0] s_own_u, s_own_v, s_other_u, s_other_v;
   logic [AppliedBits-1:0]      s_weight;
   logic                        s_valid, s_usable, s_saturated, s_depth_range, s_dropped, s_eps_saturated;
-  assign stage_d = {own_u, own_v, other_u, other_v, applied_weight, neighbour_usable, own_saturated,
-                    own_depth_range, dropped, eps_saturated_used};
-  if (Stages > 0) begin : gen_stage
+  context_register #(.Bits(BBits), .Present(Stages > 0)) u_stage_b (
+    .clk_i, .load_i(advance_i && a_valid), .d_i({a_values, applied_weight}), .q_o(b_q));
+  // The valid bits of the two registers.
+  if (Stages > 1) begin : gen_valid_a
     logic valid_q;
     always_ff @(posedge clk_i or negedge rst_ni) begin
       if (!rst_ni) valid_q <= 1'b0;
       else if (advance_i) valid_q <= valid_i;
     end
-    // Loaded only with a pixel: between pixels the register keeps its last
-    // one, unread (valid_o is low).
-    always_ff @(posedge clk_i) begin
-      if (advance_i && valid_i) stage_q <= stage_d;
+    assign a_valid = valid_q;
+  end else begin : gen_no_valid_a
+    assign a_valid = valid_i;
+  end
+  if (Stages > 0) begin : gen_valid_b
+    logic valid_q;
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) valid_q <= 1'b0;
+      else if (advance_i) valid_q <= a_valid;
     end
     assign s_valid = valid_q;
-  end else begin : gen_no_stage
-    logic unused_clock;
-    assign unused_clock = ^{clk_i, rst_ni, advance_i};
-    assign stage_q = stage_d;
-    assign s_valid = valid_i;
+  end else begin : gen_no_valid_b
+    logic unused_reset;
+    assign unused_reset = ^{rst_ni, advance_i};
+    assign s_valid = a_valid;
   end
-  assign {s_own_u, s_own_v, s_other_u, s_other_v, s_weight, s_usable, s_saturated, s_depth_range, s_dropped,
-          s_eps_saturated} = stage_q;
+  assign {s_own_u, s_own_v, s_other_u, s_other_v, s_usable, s_saturated, s_depth_range, s_dropped,
+          s_eps_saturated, s_weight} = b_q;
   assign valid_o = s_valid;
 
-  // ---- after it: the correction, rounding and saturation
+  // ---- C: the correction, rounding and saturation
   logic signed [SumBits-1:0]   sum_u, sum_v;
   logic                        saturated_u, saturated_v;
 
