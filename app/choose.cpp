@@ -69,6 +69,14 @@ nlohmann::json widths_json(const Widths& w) {
   return out;
 }
 
+// "correction_stages=2", the parameters in which two widths differ.
+std::string pipeline_settings(const Widths& to, const Widths& from) {
+  std::string out;
+  for (const auto& p : param_table())
+    if (to.*(p.field) != from.*(p.field)) out += fmt::format("{}{}={}", out.empty() ? "" : " ", p.name, to.*(p.field));
+  return out;
+}
+
 }  // namespace
 
 CLI::App* add_choose_command(CLI::App& app, ChooseOptions& options) {
@@ -123,6 +131,31 @@ CLI::App* add_choose_command(CLI::App& app, ChooseOptions& options) {
   cmd->add_option("--jobs", options.jobs, "designs sized and configurations synthesised at a time (default: all cores)")
       ->check(CLI::Range(1u, 256u));
   return cmd;
+}
+
+std::optional<Widths> deeper_pipeline(const Design& design, const Widths& w, const std::string& block,
+                                      const std::vector<std::string>& settings) {
+  const auto user_sets = [&](const char* name) {
+    return std::any_of(settings.begin(), settings.end(),
+                       [&](const std::string& s) { return s.rfind(std::string(name) + "=", 0) == 0; });
+  };
+  Widths next = w;
+  if ((block == "correction adder" || block == "control") && design.kind == Design::Kind::ConstantDepth) {
+    const int most = design.persp ? 2 : 1;
+    if (w.correction_stages >= most || user_sets("correction_stages")) return std::nullopt;
+    next.correction_stages = most;
+  } else if (block == "reciprocal") {
+    if (w.recip_latency >= 64 || user_sets("recip_latency")) return std::nullopt;
+    next.recip_latency = std::min(64, 2 * w.recip_latency);
+  } else {
+    return std::nullopt;
+  }
+  try {
+    validate(next);
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+  return next;
 }
 
 int run_choose_command(const ChooseOptions& options) {
@@ -183,8 +216,6 @@ int run_choose_command(const ChooseOptions& options) {
       c.total_area_um2 += flops ? c.area->flop_table_area_um2 : c.area->sram_area_um2;
     }
   };
-  const bool user_sets_pipeline = std::any_of(options.settings.begin(), options.settings.end(),
-                                              [](const std::string& s) { return s.rfind("correction_stages=", 0) == 0; });
 
   // Size every design; for a table design, shrink the table while banding
   // keeps the cycles within the budget (shrink_table). The designs are sized
@@ -235,39 +266,49 @@ int run_choose_command(const ChooseOptions& options) {
     }
     take_area(c, areas[a++]);
   }
-  // The pipelining: a table design that misses the clock tries the correction
-  // adder's registers, unless the user set them: 2 for cd-persp's (the second
-  // splits its weight), 1 for the others (a second would only add latency).
-  // The values are the same; its scenes run again for the cycles a triangle
-  // they add, and it is synthesised again. It is taken if it keeps the rate
-  // and its f_max is higher.
-  std::vector<size_t> retried;
-  std::vector<AreaJob> pipelined_jobs;
-  std::vector<Candidate> pipelined;
-  for (size_t i = 0; i < candidates.size(); ++i) {
-    const Candidate& c = candidates[i];
-    if (options.clock_mhz <= 0 || user_sets_pipeline || !c.area || c.meets_clock ||
-        c.design.kind != Design::Kind::ConstantDepth || c.widths.correction_stages != 0)
-      continue;
-    Candidate p = c;
-    p.widths.correction_stages = p.design.persp ? 2 : 1;
-    std::vector<DesignResult> results;
-    for (const PreparedScene* scene : scene_list)
-      results.push_back(evaluate(*scene, p.design, p.widths, /*measure_error=*/false, nullptr, threads));
-    take_rates(p, results);
-    if (!p.meets_rate) continue;
-    retried.push_back(i);
-    pipelined_jobs.push_back({p.design, p.widths});
-    pipelined.push_back(p);
-  }
-  if (!pipelined_jobs.empty()) {
-    fmt::print(stderr, "choose: {} design(s) below {:g} MHz synthesised again with the correction adder pipelined\n",
-               pipelined_jobs.size(), options.clock_mhz);
-    const std::vector<AreaReport> pipelined_areas = synthesise_areas(pipelined_jobs, area_options, options.jobs);
+  // The pipelining: a design below the clock takes, up to three times, one
+  // more step of the pipelining of the block that sets its clock
+  // (deeper_pipeline), runs its scenes again for the cycles that adds (the
+  // values are the same), and is synthesised again; a step is kept if the
+  // design still meets the rate and its f_max rose, and the search ends for it
+  // otherwise.
+  std::vector<bool> spent(candidates.size(), false);
+  for (int round = 0; round < 3 && options.clock_mhz > 0; ++round) {
+    std::vector<size_t> retried;
+    std::vector<AreaJob> jobs_again;
+    std::vector<Candidate> deeper;
+    for (size_t i = 0; i < candidates.size(); ++i) {
+      const Candidate& c = candidates[i];
+      if (spent[i] || !c.area || c.meets_clock) continue;
+      const std::optional<Widths> next = deeper_pipeline(c.design, c.widths, critical_block(*c.area), options.settings);
+      if (!next) {
+        spent[i] = true;
+        continue;
+      }
+      Candidate p = c;
+      p.widths = *next;
+      std::vector<DesignResult> results;
+      for (const PreparedScene* scene : scene_list)
+        results.push_back(evaluate(*scene, p.design, p.widths, /*measure_error=*/false, nullptr, threads));
+      take_rates(p, results);
+      if (!p.meets_rate) {
+        spent[i] = true;
+        continue;
+      }
+      fmt::print(stderr, "choose: {} below {:g} MHz ({:.1f}, the {}): synthesised again with {}\n", c.design.name,
+                 options.clock_mhz, c.area->fmax_mhz, critical_block(*c.area), pipeline_settings(p.widths, c.widths));
+      retried.push_back(i);
+      jobs_again.push_back({p.design, p.widths});
+      deeper.push_back(p);
+    }
+    if (jobs_again.empty()) break;
+    const std::vector<AreaReport> areas_again = synthesise_areas(jobs_again, area_options, options.jobs);
     for (size_t k = 0; k < retried.size(); ++k) {
-      take_area(pipelined[k], pipelined_areas[k]);
-      if (pipelined[k].area->fmax_mhz > candidates[retried[k]].area->fmax_mhz)
-        candidates[retried[k]] = pipelined[k];
+      take_area(deeper[k], areas_again[k]);
+      if (deeper[k].area->fmax_mhz > candidates[retried[k]].area->fmax_mhz)
+        candidates[retried[k]] = deeper[k];
+      else
+        spent[retried[k]] = true;
     }
   }
   // Ranked: designs that meet every target with an area, by area then

@@ -7,10 +7,13 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "design.hpp"
 #include "scene.hpp"
+#include "widths.hpp"
 
 namespace cdsim {
 
@@ -34,6 +37,12 @@ struct ChooseOptions {
 };
 
 CLI::App* add_choose_command(CLI::App& app, ChooseOptions& options);
+// One more step of the pipelining of `block`, the block that sets a design's
+// clock (its name in cdsim area's report), or none when that block has no
+// knob, it is spent, or `settings` (--set NAME=VALUE) names it
+// (docs/choose.md, "The pipelining it searches").
+std::optional<Widths> deeper_pipeline(const Design& design, const Widths& widths, const std::string& block,
+                                      const std::vector<std::string>& settings);
 int run_choose_command(const ChooseOptions& options);
 
 }  // namespace cdsim

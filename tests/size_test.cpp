@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "choose.hpp"
 #include "design.hpp"
 #include "evaluate.hpp"
 #include "scene.hpp"
@@ -209,6 +210,32 @@ TEST(DesignTable, EverySizedWidthMovesTheDesignsResults) {
           << design.name << ": " << name << " = " << value << " changes nothing";
     }
   }
+}
+
+// choose's pipelining steps (docs/choose.md): the correction adder's
+// registers for a table design whose clock the adder or the control sets (2
+// with persp, 1 without), twice the reciprocal's stages for the reciprocal,
+// nothing for a block without a knob, a knob spent or one the user set.
+TEST(ChoosePipelining, OneStepOfTheBlockThatSetsTheClock) {
+  const Widths w;
+  const Design& persp = find_design("cd-persp");
+  const Design& linear = find_design("cd-linear");
+  const Design& divide = find_design("divide");
+  ASSERT_TRUE(deeper_pipeline(persp, w, "control", {}).has_value());
+  EXPECT_EQ(deeper_pipeline(persp, w, "control", {})->correction_stages, 2);
+  EXPECT_EQ(deeper_pipeline(linear, w, "correction adder", {})->correction_stages, 1);
+  Widths spent = w;
+  spent.correction_stages = 1;
+  EXPECT_FALSE(deeper_pipeline(linear, spent, "correction adder", {}).has_value());
+  EXPECT_FALSE(deeper_pipeline(divide, w, "control", {}).has_value());
+  EXPECT_FALSE(deeper_pipeline(persp, w, "control", {"correction_stages=0"}).has_value());
+  ASSERT_TRUE(deeper_pipeline(divide, w, "reciprocal", {}).has_value());
+  EXPECT_EQ(deeper_pipeline(divide, w, "reciprocal", {})->recip_latency, 2 * w.recip_latency);
+  Widths deep = w;
+  deep.recip_latency = 64;
+  EXPECT_FALSE(deeper_pipeline(divide, deep, "reciprocal", {}).has_value());
+  EXPECT_FALSE(deeper_pipeline(divide, w, "reciprocal", {"recip_latency=4"}).has_value());
+  EXPECT_FALSE(deeper_pipeline(persp, w, "setup engine", {}).has_value());
 }
 
 }  // namespace
