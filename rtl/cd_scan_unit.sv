@@ -177,7 +177,7 @@ module cd_scan_unit #(
     StPixel    = `CD_STATE_PIXEL,
     StScan     = `CD_STATE_SCAN,       // columns walked with no possible line
     StRecord   = `CD_STATE_RECORD,
-    StDrain    = `CD_STATE_DRAIN       // per-pixel designs: the pipeline empties
+    StDrain    = `CD_STATE_DRAIN       // a pipeline empties (per-pixel designs; the table with correction_stages)
   } state_e;
 
   localparam logic [`CD_KIND_BITS-1:0] KindDivide = `CD_KIND_BITS'(`CD_KIND_DIVIDE);  // kind_i
@@ -265,7 +265,7 @@ module cd_scan_unit #(
   logic        to_stage;     // the fill stage takes the front's triangle at the end of this cycle
   logic        p_valid;      // a triangle waits for the back (in the fill stage, or the front's)
   logic        stage_busy;
-  logic [1:0]  p_kind;
+  logic [`CD_KIND_BITS-1:0] p_kind;
   logic [2:0]  p_segment_log2;
   logic        p_kim_pipelined, p_correction, p_persp, p_quadratic, p_empty, p_bands,
                p_per_pixel;
@@ -274,7 +274,7 @@ module cd_scan_unit #(
 
   state_e     state_d, state_q;                 // the back's
   logic [StepCountBits-1:0] count_d, count_q;    // scan / drain cycle
-  logic [1:0]  b_kind_d, b_kind_q, kind_q;
+  logic [`CD_KIND_BITS-1:0] b_kind_d, b_kind_q, kind_q;
   logic        mode_divide, mode_affine, mode_sub, mode_kim;  // this triangle's datapath, when not the table
   logic [2:0]  b_segment_log2_d, b_segment_log2_q, segment_log2_q;
   logic        b_kim_pipelined_d, b_kim_pipelined_q, kim_pipelined_q;
@@ -999,7 +999,7 @@ module cd_scan_unit #(
 
   // What the back needs to know of a triangle as it takes it: through the fill
   // stage with FifoDepth = 2, else straight from the front.
-  localparam int JobBits = 2 + 3 + 1 + 2 + 1 + 1 + 1 + 3 + 8;
+  localparam int JobBits = `CD_KIND_BITS + 3 + 1 + 2 + 1 + 1 + 1 + 3 + 8;
   logic [JobBits-1:0] p_job;
   context_register #(.Bits(JobBits), .Present(FillStage)) u_job_stage (
     .clk_i, .load_i(to_stage),
