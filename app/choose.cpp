@@ -147,6 +147,12 @@ std::optional<Widths> deeper_pipeline(const Design& design, const Widths& w, con
   } else if (block == "reciprocal") {
     if (w.recip_latency >= 64 || user_sets("recip_latency")) return std::nullopt;
     next.recip_latency = std::min(64, 2 * w.recip_latency);
+  } else if (block == "affine setup") {
+    // Its serial dividers resolve their quotient bits over div_cycles, which
+    // div_bits_per_cycle sets: half as many bits a cycle, a shorter path
+    // (affine at default widths 4 -> 2: 21.35 -> 17.29 ns, docs/choose.md).
+    if (w.div_bits_per_cycle <= 1 || user_sets("div_bits_per_cycle")) return std::nullopt;
+    next.div_bits_per_cycle = w.div_bits_per_cycle / 2;
   } else {
     return std::nullopt;
   }

@@ -40,7 +40,8 @@ CLI::App* add_choose_command(CLI::App& app, ChooseOptions& options);
 // One more step of the pipelining of `block`, the block that sets a design's
 // clock (its name in cdsim area's report), or none when that block has no
 // knob, it is spent, or `settings` (--set NAME=VALUE) names it
-// (docs/choose.md, "The pipelining it searches").
+// (docs/choose.md, "The pipelining it searches"): the correction adder's
+// registers, the reciprocal's stages, the affine setup's divider bits a cycle.
 std::optional<Widths> deeper_pipeline(const Design& design, const Widths& widths, const std::string& block,
                                       const std::vector<std::string>& settings);
 int run_choose_command(const ChooseOptions& options);

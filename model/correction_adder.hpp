@@ -56,11 +56,6 @@ inline CorrectedValue linear_correction(const LineValueOf<Int>& own, const LineV
   out.v = fx::narrow_nearest_saturate(correct(own.v, neighbour.v), f.shift, -f.out_hi - 1, f.out_hi, &out.saturated);
   return out;
 }
-template <class Int>
-inline CorrectedValue linear_correction(const LineValueOf<Int>& own, const LineValueOf<Int>& neighbour,
-                                        int64_t weight, const Widths& w) {
-  return linear_correction(own, neighbour, weight, CorrectionFormat(w));
-}
 
 // cd-persp: the perspective-correct weight t' = |d| (1 + e) / (1 + |d| e)
 // toward the neighbour k' = k + direction, where e = q_k' / q_k - 1 =

@@ -215,7 +215,8 @@ TEST(DesignTable, EverySizedWidthMovesTheDesignsResults) {
 // choose's pipelining steps (docs/choose.md): the correction adder's
 // registers for a table design whose clock the adder or the control sets (2
 // with persp, 1 without), twice the reciprocal's stages for the reciprocal,
-// nothing for a block without a knob, a knob spent or one the user set.
+// half the divider bits a cycle for the affine setup, nothing for a block
+// without a knob, a knob spent or one the user set.
 TEST(ChoosePipelining, OneStepOfTheBlockThatSetsTheClock) {
   const Widths w;
   const Design& persp = find_design("cd-persp");
@@ -236,6 +237,12 @@ TEST(ChoosePipelining, OneStepOfTheBlockThatSetsTheClock) {
   EXPECT_FALSE(deeper_pipeline(divide, deep, "reciprocal", {}).has_value());
   EXPECT_FALSE(deeper_pipeline(divide, w, "reciprocal", {"recip_latency=4"}).has_value());
   EXPECT_FALSE(deeper_pipeline(persp, w, "setup engine", {}).has_value());
+  const Design& affine = find_design("affine");
+  ASSERT_TRUE(deeper_pipeline(affine, w, "affine setup", {}).has_value());
+  EXPECT_EQ(deeper_pipeline(affine, w, "affine setup", {})->div_bits_per_cycle, w.div_bits_per_cycle / 2);
+  Widths one_bit = w;
+  one_bit.div_bits_per_cycle = 1;
+  EXPECT_FALSE(deeper_pipeline(affine, one_bit, "affine setup", {}).has_value());
 }
 
 }  // namespace

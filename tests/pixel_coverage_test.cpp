@@ -1,4 +1,4 @@
-// Coverage: the column walker's spans against a brute-force pixel test, the
+// Pixel coverage (model/pixel_coverage.cpp): the column walker's spans against a brute-force pixel test, the
 // top-left rule on exact pixel centres and edges, and watertightness of a
 // closed mesh.
 #include <gtest/gtest.h>
