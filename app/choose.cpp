@@ -147,6 +147,17 @@ std::optional<Widths> deeper_pipeline(const Design& design, const Widths& w, con
   } else if (block == "reciprocal") {
     if (w.recip_latency >= 64 || user_sets("recip_latency")) return std::nullopt;
     next.recip_latency = std::min(64, 2 * w.recip_latency);
+  } else if (block == "setup engine") {
+    // First a register after each stage's products (a cycle a stage), then,
+    // as for the affine setup, serial dividers of half as many bits a cycle.
+    // The path's end inside the flattened engine is a cell, so the steps go
+    // in this order whatever the path.
+    if (w.setup_multipliers == 0 && !w.setup_product_register && !user_sets("setup_product_register")) {
+      next.setup_product_register = 1;
+    } else {
+      if (w.div_bits_per_cycle <= 1 || user_sets("div_bits_per_cycle")) return std::nullopt;
+      next.div_bits_per_cycle = w.div_bits_per_cycle / 2;
+    }
   } else if (block == "affine setup") {
     // Its serial dividers resolve their quotient bits over div_cycles, which
     // div_bits_per_cycle sets: half as many bits a cycle, a shorter path
@@ -184,9 +195,10 @@ int run_choose_command(const ChooseOptions& options) {
   for (const PreparedScene& s : scenes) scene_list.push_back(&s);
 
   const ErrorTarget target{options.max_error, options.metric, options.statistic};
-  // A setup engine the user names (--set setup_multipliers=M, 0 included) is kept.
+  // A setup engine the user names (--set setup_multipliers=M, 0 included, or
+  // setup_product_register) is kept.
   const bool user_sets_setup = std::any_of(options.settings.begin(), options.settings.end(), [](const std::string& s) {
-    return s.rfind("setup_multipliers=", 0) == 0;
+    return s.rfind("setup_multipliers=", 0) == 0 || s.rfind("setup_product_register=", 0) == 0;
   });
   fmt::print("choose: the cheapest design with {} {} error <= {} on every scene{}{}\n", options.statistic,
              options.metric, options.max_error,

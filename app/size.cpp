@@ -162,7 +162,9 @@ std::vector<int> setup_multiplier_choices() { return {1, 2, 4, 8}; }
 void shrink_setup(const Design& design, const std::vector<const PreparedScene*>& scenes,
                   const ErrorTarget& target, double max_slowdown, int64_t reference_cycles, Sizing& sizing,
                   double min_rate, unsigned threads) {
-  if (!sizing.reachable || sizing.widths.setup_multipliers != 0) return;
+  // A named setup engine stays: shared multipliers, or the products' register
+  // (which only the one-multiplier-a-product engine has).
+  if (!sizing.reachable || sizing.widths.setup_multipliers != 0 || sizing.widths.setup_product_register) return;
   for (const int m : setup_multiplier_choices()) {
     throw_if_interrupted();
     Widths trial = sizing.widths;
@@ -271,6 +273,7 @@ int run_size_command(const SizeOptions& options) {
   for (const int m : setups) {
     Widths trial = w;
     trial.setup_multipliers = m;
+    if (m > 0) trial.setup_product_register = 0;  // shared multipliers register their sums anyway
     const DesignResult r = evaluate(scene, design, trial, false);  // cycles only
     if (m == 0) parallel_cycles = r.cycles;
     fmt::print("{:>20} {:>8} {:>12} {:>7.3f} {:>9.4f}{}\n", m == 0 ? "0 (one per product)" : std::to_string(m),

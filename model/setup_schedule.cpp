@@ -82,7 +82,11 @@ SetupSchedule setup_schedule(const Widths& w, const DerivedWidths& d) {
         if (multipliers > 0) offset += t.cycles();
       }
     }
-    s.stage_cycle[stage] = phase_start + (multipliers > 0 ? *std::max_element(load.begin(), load.end()) : 0);
+    // One multiplier a product: the stage reads its sums in the cycle they
+    // are formed, or, with setup_product_register, from a register a cycle on.
+    const int product_cycles = multipliers > 0 ? *std::max_element(load.begin(), load.end())
+                                               : w.setup_product_register;
+    s.stage_cycle[stage] = phase_start + product_cycles;
     if (stage == 2) s.div_done = s.stage_cycle[2] + d.div_cycles;
     phase_start = s.stage_cycle[stage] + 1;
   }

@@ -92,6 +92,11 @@ void validate(const Widths& w) {
         "subpixel_bits + adapt_depth = {} exceeds 14: the leaves' vertices would carry more subpixel bits "
         "than the edge functions hold",
         w.subpixel_bits + w.adapt_depth));
+  if (w.setup_product_register && w.setup_multipliers > 0)
+    throw std::invalid_argument(fmt::format(
+        "setup_product_register=1 needs setup_multipliers=0 (setup_multipliers={}): shared multipliers "
+        "register their results already",
+        w.setup_multipliers));
   if (w.out_int + w.out_frac > 48)
     throw std::invalid_argument("out_int + out_frac must not exceed 48 bits");
 }

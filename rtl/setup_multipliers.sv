@@ -4,7 +4,9 @@
 //
 // With CD_SETUP_MULTIPLIERS = 0 every product has a multiplier of its own and
 // result_o is combinational: the sums are ready in the cycle that reads them
-// (stage A to E of setup_engine.sv), as in a fully parallel engine.
+// (stage A to E of setup_engine.sv), as in a fully parallel engine. With
+// CD_SETUP_PRODUCT_REGISTER each sum is registered in its terms' cycle and
+// read by its stage a cycle later (the schedule puts the stage there).
 //
 // With M >= 1 the products share M unsigned L x L multipliers (L =
 // CD_SETUP_MUL_BITS). Term t runs on multiplier CD_SETUP_TERM_MULTIPLIER[t]
@@ -49,6 +51,14 @@ module setup_multipliers #(
   localparam logic [TermCount-1:0]    TermFirst      = `CD_SETUP_TERM_FIRST;
   localparam logic [TermCount-1:0]    TermLast       = `CD_SETUP_TERM_LAST;
   localparam logic [8*ResultCount-1:0] ResultBits    = `CD_SETUP_RESULT_BITS;
+  localparam bit ProductRegister = `CD_SETUP_PRODUCT_REGISTER != 0;
+
+  // The first term of result r (terms are listed result by result).
+  function automatic int first_term(int r);
+    for (int t = 0; t < TermCount; t++)
+      if (32'(TermResult[8*t +: 8]) == r) return t;
+    return 0;
+  endfunction
 
   if (Multipliers == 0) begin : gen_parallel
     // One multiplier per product, its operands as wide as the term says (the
@@ -74,10 +84,26 @@ module setup_multipliers #(
         for (int t = 0; t < TermCount; t++)
           if (TermResult[8*t +: 8] == r) sum = sum + Bits'(product[AccBits*t +: AccBits]);
       end
-      assign result_o[AccBits*r +: AccBits] = AccBits'(sum);
+      if (ProductRegister) begin : gen_registered
+        // Registered in the result's product cycle (its terms' start), read
+        // by the stage a cycle on; it holds until the terms run again.
+        localparam int Start = 32'(TermStart[16*first_term(r) +: 16]);
+        logic signed [Bits-1:0] sum_q;
+        always_ff @(posedge clk_i) begin
+          if (setup_i && stage_count_i == CountBits'(Start) && !hold_i) sum_q <= sum;
+        end
+        assign result_o[AccBits*r +: AccBits] = AccBits'(sum_q);
+      end else begin : gen_combinational
+        assign result_o[AccBits*r +: AccBits] = AccBits'(sum);
+      end
     end
-    logic unused_shared;
-    assign unused_shared = ^{clk_i, hold_i, setup_i, stage_count_i, a_i, b_i};
+    // The buses' sign extension beyond each term's width.
+    logic unused_operands;
+    assign unused_operands = ^{a_i, b_i};
+    if (!ProductRegister) begin : gen_unused_control
+      logic unused_control;
+      assign unused_control = ^{clk_i, hold_i, setup_i, stage_count_i};
+    end
   end else begin : gen_shared
     localparam int L = `CD_SETUP_MUL_BITS;
     localparam int PieceBits = `CD_SETUP_PIECE_BITS;

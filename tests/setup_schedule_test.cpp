@@ -6,6 +6,7 @@
 
 #include <random>
 #include <set>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -31,6 +32,27 @@ TEST(SetupSchedule, FullyParallelEngineTakesOneCycleAStage) {
   EXPECT_EQ(d.setup_stage_d, 2 + d.div_cycles);
   EXPECT_EQ(d.setup_stage_e, 3 + d.div_cycles);
   EXPECT_EQ(d.setup_cycles, 4 + d.div_cycles);
+}
+
+// With the products' register each stage reads its sums a cycle after its
+// products: two cycles a stage, and the dividers still start at stage C.
+TEST(SetupSchedule, ProductRegisterAddsACycleToEveryStage) {
+  Widths w;
+  w.setup_product_register = 1;
+  const DerivedWidths d = derive(w);
+  const SetupSchedule s = setup_schedule(w, d);
+  EXPECT_EQ(d.setup_stage_a, 1);
+  EXPECT_EQ(d.setup_stage_b, 3);
+  EXPECT_EQ(d.setup_stage_c, 5);
+  EXPECT_EQ(d.setup_div_done, 5 + d.div_cycles);
+  EXPECT_EQ(d.setup_stage_d, 6 + d.div_cycles);
+  EXPECT_EQ(d.setup_stage_e, 8 + d.div_cycles);
+  EXPECT_EQ(d.setup_cycles, 9 + d.div_cycles);
+  // Every term runs in the cycle before its stage reads it.
+  for (const SetupTerm& t : s.terms)
+    EXPECT_EQ(t.start + 1, s.stage_cycle[static_cast<size_t>(s.results[static_cast<size_t>(t.result)].stage)]);
+  w.setup_multipliers = 2;
+  EXPECT_THROW(validate(w), std::invalid_argument);
 }
 
 // Stage windows as rtl/setup_engine.sv forms its operands.

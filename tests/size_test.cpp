@@ -215,7 +215,8 @@ TEST(DesignTable, EverySizedWidthMovesTheDesignsResults) {
 // choose's pipelining steps (docs/choose.md): the correction adder's
 // registers for a table design whose clock the adder or the control sets (2
 // with persp, 1 without), twice the reciprocal's stages for the reciprocal,
-// half the divider bits a cycle for the affine setup, nothing for a block
+// half the divider bits a cycle for the affine setup, the products' register
+// then half the divider bits for the setup engine, nothing for a block
 // without a knob, a knob spent or one the user set.
 TEST(ChoosePipelining, OneStepOfTheBlockThatSetsTheClock) {
   const Widths w;
@@ -236,7 +237,21 @@ TEST(ChoosePipelining, OneStepOfTheBlockThatSetsTheClock) {
   deep.recip_latency = 64;
   EXPECT_FALSE(deeper_pipeline(divide, deep, "reciprocal", {}).has_value());
   EXPECT_FALSE(deeper_pipeline(divide, w, "reciprocal", {"recip_latency=4"}).has_value());
-  EXPECT_FALSE(deeper_pipeline(persp, w, "setup engine", {}).has_value());
+  // The setup engine: its products' register first (one multiplier a
+  // product only), then half the divider bits a cycle.
+  ASSERT_TRUE(deeper_pipeline(persp, w, "setup engine", {}).has_value());
+  EXPECT_EQ(deeper_pipeline(persp, w, "setup engine", {})->setup_product_register, 1);
+  EXPECT_EQ(deeper_pipeline(persp, w, "setup engine", {})->div_bits_per_cycle, w.div_bits_per_cycle);
+  Widths registered = w;
+  registered.setup_product_register = 1;
+  ASSERT_TRUE(deeper_pipeline(linear, registered, "setup engine", {}).has_value());
+  EXPECT_EQ(deeper_pipeline(linear, registered, "setup engine", {})->div_bits_per_cycle, w.div_bits_per_cycle / 2);
+  Widths shared = w;
+  shared.setup_multipliers = 2;
+  EXPECT_EQ(deeper_pipeline(linear, shared, "setup engine", {})->setup_product_register, 0);
+  EXPECT_EQ(deeper_pipeline(linear, shared, "setup engine", {})->div_bits_per_cycle, w.div_bits_per_cycle / 2);
+  EXPECT_EQ(deeper_pipeline(linear, w, "setup engine", {"setup_product_register=0"})->div_bits_per_cycle,
+            w.div_bits_per_cycle / 2);
   const Design& affine = find_design("affine");
   ASSERT_TRUE(deeper_pipeline(affine, w, "affine setup", {}).has_value());
   EXPECT_EQ(deeper_pipeline(affine, w, "affine setup", {})->div_bits_per_cycle, w.div_bits_per_cycle / 2);
