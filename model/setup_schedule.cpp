@@ -125,7 +125,11 @@ std::string setup_schedule_defines(const SetupSchedule& s) {
     first.push_back(static_cast<int>(i) == r.first_term);
     last.push_back(static_cast<int>(i) == r.first_term + r.term_count - 1);
   }
-  for (const SetupResult& r : s.results) result_bits.push_back(r.bits);
+  std::vector<int> result_first_term;
+  for (const SetupResult& r : s.results) {
+    result_bits.push_back(r.bits);
+    result_first_term.push_back(r.first_term);
+  }
   std::string out = "// Setup engine multiplies and their schedule (model/setup_terms.def, setup_schedule.cpp)\n";
   out += fmt::format("`define CD_SETUP_TERM_COUNT {}\n`define CD_SETUP_RESULT_COUNT {}\n", s.terms.size(),
                      s.results.size());
@@ -152,6 +156,7 @@ std::string setup_schedule_defines(const SetupSchedule& s) {
   out += fmt::format("`define CD_SETUP_TERM_LAST {}\n", packed(last, 1));
   out += "// Per result r, bits [r*8 +: 8]\n";
   out += fmt::format("`define CD_SETUP_RESULT_BITS {}\n", packed(result_bits, 8));
+  out += fmt::format("`define CD_SETUP_RESULT_FIRST_TERM {}\n", packed(result_first_term, 8));
   return out;
 }
 

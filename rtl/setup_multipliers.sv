@@ -53,12 +53,7 @@ module setup_multipliers #(
   localparam logic [8*ResultCount-1:0] ResultBits    = `CD_SETUP_RESULT_BITS;
   localparam bit ProductRegister = `CD_SETUP_PRODUCT_REGISTER != 0;
 
-  // The first term of result r (terms are listed result by result).
-  function automatic int first_term(int r);
-    for (int t = 0; t < TermCount; t++)
-      if (32'(TermResult[8*t +: 8]) == r) return t;
-    return 0;
-  endfunction
+  localparam logic [8*ResultCount-1:0] ResultFirstTerm = `CD_SETUP_RESULT_FIRST_TERM;
 
   if (Multipliers == 0) begin : gen_parallel
     // One multiplier per product, its operands as wide as the term says (the
@@ -87,7 +82,7 @@ module setup_multipliers #(
       if (ProductRegister) begin : gen_registered
         // Registered in the result's product cycle (its terms' start), read
         // by the stage a cycle on; it holds until the terms run again.
-        localparam int Start = 32'(TermStart[16*first_term(r) +: 16]);
+        localparam int Start = 32'(TermStart[16*ResultFirstTerm[8*r +: 8] +: 16]);
         logic signed [Bits-1:0] sum_q;
         always_ff @(posedge clk_i) begin
           if (setup_i && stage_count_i == CountBits'(Start) && !hold_i) sum_q <= sum;
