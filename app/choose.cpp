@@ -108,8 +108,8 @@ CLI::App* add_choose_command(CLI::App& app, ChooseOptions& options) {
       ->check(cli::number_in(1.0, 1000.0))
       ->capture_default_str();
   cmd->add_option("--min-rate", options.min_rate,
-                  "px/clk every scene must reach (0: none); a smaller setup engine or table is taken only while "
-                  "it keeps the rate")
+                  "px/clk every scene must reach (0: none, the area-only ranking); a smaller setup engine or "
+                  "table is taken only while it keeps the rate")
       ->check(cli::number_in(0.0, 1000.0))
       ->capture_default_str();
   cmd->add_option("--clock-mhz", options.clock_mhz,

@@ -26,7 +26,7 @@ struct ChooseOptions {
   std::string metric = "texels";
   std::string statistic = "max";
   double max_slowdown = 1.10;  // cycles of a banded table over those of an unbanded one
-  double min_rate = 0;         // px/clk every scene must reach (0: no rate target)
+  double min_rate = 0.9;       // px/clk every scene must reach (0: no rate target; docs/choose.md)
   double clock_mhz = 0;        // the clock f_max must reach (0: no clock target)
   std::string json_path;
   bool verify = true;          // regress the winner on the RTL

@@ -1,51 +1,69 @@
 #!/usr/bin/env bash
-# A pipeline register cuts a block's path (issue 42, item 7): divide at narrow
-# widths, its pixel reciprocal one stage deep (recip_latency=1, the narrow
-# set's) and two stages deep. The reciprocal resolves recip_bits + 1 = 9
-# quotient bits by restoring steps in series (a subtract and a mux each); two
-# stages take ceil(9/2) = 5 and 4 of them. The one-stage path also holds the
-# operand's normalisation (reciprocal_operand) before the first step, which
-# stays in the first stage, so the path cannot fall to 5/9 but must fall by
-# the four steps it loses. Checked from `cdsim area`'s timing (OpenSTA on the
-# netlist): the reciprocal's worst flip-flop to flip-flop path falls below
-# 0.85 of the one-stage path and stays above 5/9 of it (less 0.5 ns for the
-# flip-flop it gains), the reciprocal gains flip-flops, and the model counts
-# more cycles for the longer latency. Measured (build 82b64d5): 18.39 ns ->
-# 13.89 ns (0.76), 74 -> 161 flip-flops, 17,182 -> 17,186 cycles.
-# Usage: check_pipeline_timing.sh CDSIM WORKDIR "NARROW SETTINGS" [AREA_CACHE]
-# AREA_CACHE: rtl_synth_design_blocks' cache, which holds divide at the
-# narrow widths; the two-stage synthesis is the one this test adds.
+# A pipelining knob's registers cut its block's path (issue 42, item 7), and
+# choose takes them for a clock (item 5). At narrow widths:
+#  1. cdsim area of DESIGN at each of VALUES of KNOB: the worst path ending in
+#     the BLOCKS (comma-separated, the longest counts) falls at each step;
+#     the first block gains flip-flops at each; the model counts more cycles
+#     at each (run on the small scene: the first triangle's setup and the
+#     last one's drain are never hidden) and the values do not change.
+#  2. choose --design DESIGN on the small scene at MAX_ERROR texels without a
+#     clock (KNOB stays at its first value), then with --clock-mhz just above
+#     the f_max it found, both with the fully parallel setup engine: the
+#     second run synthesises DESIGN again with KNOB at its last value and
+#     takes it, with a higher f_max. MAX_ERROR is one at which choose's sized
+#     widths leave BLOCKS on the critical path (see the tests that call it).
+# Usage: check_register_timing.sh CDSIM WORKDIR "NARROW SETTINGS" DESIGN KNOB "VALUES" BLOCKS MAX_ERROR
 set -euo pipefail
-cdsim=$1 work=$2 narrow=$3 cache=${4:-$2/cache}
-rm -rf "$work" && mkdir -p "$work" "$cache"
+cdsim=$1 work=$2 narrow=$3 design=$4 knob=$5 values=$6 blocks=$7 max_error=$8
+rm -rf "$work" && mkdir -p "$work/cache"
 args=()
-for s in $narrow; do [[ $s == recip_latency=* ]] || args+=(--set "$s"); done
+for s in $narrow; do args+=(--set "$s"); done
 scene=$(dirname "$0")/data/small_scene.tri
-for latency in 1 2; do
-  "$cdsim" area --design divide "${args[@]}" --set recip_latency=$latency --cache "$cache" \
-    --json "$work/area_$latency.json" > /dev/null
-  "$cdsim" run --scene "$scene" --design divide "${args[@]}" --set recip_latency=$latency \
-    --json "$work/run_$latency.json" > /dev/null
+for value in $values; do
+  "$cdsim" area --design "$design" "${args[@]}" --set "$knob=$value" --cache "$work/cache" \
+    --json "$work/area_$value.json" > /dev/null
+  "$cdsim" run --scene "$scene" --design "$design" "${args[@]}" --set "$knob=$value" \
+    --json "$work/run_$value.json" > /dev/null
 done
+choose=("$cdsim" choose "$scene" --design "$design" --max-error "$max_error" --no-verify --area-cache "$work/cache"
+        --set setup_multipliers=0)
+"${choose[@]}" --json "$work/choose_free.json" > "$work/choose_free.txt"
+fmax=$(/usr/bin/python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['ranking'][0]['fmax_mhz'])" \
+  "$work/choose_free.json")
+clock=$(/usr/bin/python3 -c "print(round(float('$fmax') + 0.1, 1))")
+"${choose[@]}" --clock-mhz "$clock" --json "$work/choose_clock.json" > "$work/choose_clock.txt" \
+  2> "$work/choose_clock.err"
 
-/usr/bin/python3 - "$work" <<'PY'
+/usr/bin/python3 - "$work" "$knob" "$values" "$blocks" <<'PY'
 import json, sys
-work = sys.argv[1]
+work, knob, blocks = sys.argv[1], sys.argv[2], sys.argv[4].split(",")
+values = [int(v) for v in sys.argv[3].split()]
 failures = []
 def expect(cond, what):
     print(("ok   " if cond else "FAIL ") + what)
     if not cond: failures.append(what)
-area = {n: json.load(open(f"{work}/area_{n}.json")) for n in (1, 2)}
-block = {n: next(b for b in area[n]["blocks"] if b["name"] == "reciprocal") for n in (1, 2)}
-path = {n: block[n]["critical_path_ns"] for n in (1, 2)}
-expect(path[1] > 0 and path[2] > 0, f"the reciprocal is timed at both depths ({path[1]:.2f}, {path[2]:.2f} ns)")
-expect(path[2] < 0.85 * path[1],
-       f"a second stage cuts the reciprocal's path: {path[1]:.2f} -> {path[2]:.2f} ns ({path[2] / path[1]:.2f})")
-expect(path[2] > 5 / 9 * path[1] - 0.5, "no more than the four steps the first stage loses")
-expect(block[2]["flops"] > block[1]["flops"],
-       f"the second stage is flip-flops: {block[1]['flops']} -> {block[2]['flops']}")
-cycles = {n: json.load(open(f"{work}/run_{n}.json"))["designs"][0]["cycles"] for n in (1, 2)}
-expect(cycles[2] > cycles[1], f"the model counts the latency: {cycles[1]} -> {cycles[2]} cycles")
+area = {v: json.load(open(f"{work}/area_{v}.json")) for v in values}
+def block(v, name):
+    return next(b for b in area[v]["blocks"] if b["name"] == name)
+path = {v: max(block(v, name)["critical_path_ns"] or 0 for name in blocks) for v in values}
+flops = {v: block(v, blocks[0])["flops"] for v in values}
+print(f"{knob}: paths into {', '.join(blocks)}:", {v: round(p, 2) for v, p in path.items()},
+      f"{blocks[0]} flip-flops:", flops)
+runs = {v: json.load(open(f"{work}/run_{v}.json"))["designs"][0] for v in values}
+for a, b in zip(values, values[1:]):
+    expect(path[b] < path[a], f"{knob} {a} -> {b} cuts the path: {path[a]:.2f} -> {path[b]:.2f} ns")
+    expect(flops[a] < flops[b], f"{knob} {a} -> {b} is flip-flops: {flops[a]} -> {flops[b]}")
+    expect(runs[a]["cycles"] < runs[b]["cycles"],
+           f"{knob} {a} -> {b}: the model counts the cycles: {runs[a]['cycles']} -> {runs[b]['cycles']}")
+    expect(runs[a]["error"] == runs[b]["error"], f"{knob} {a} -> {b}: the values do not change")
+free = json.load(open(f"{work}/choose_free.json"))["ranking"][0]
+clocked = json.load(open(f"{work}/choose_clock.json"))["ranking"][0]
+first, last = values[0], values[-1]
+expect(free["widths"].get(knob, first) == first, f"without a clock choose keeps {knob}={first}")
+expect(clocked["widths"].get(knob) == last, f"below the clock it takes {knob}={last} ({clocked['widths'].get(knob)})")
+expect(clocked["fmax_mhz"] > free["fmax_mhz"], f"with a higher f_max: {free['fmax_mhz']} -> {clocked['fmax_mhz']} MHz")
+expect(f"synthesised again with {knob}={last}" in open(f"{work}/choose_clock.err").read(),
+       "choose says it synthesised the design again, and with what")
 sys.exit(1 if failures else 0)
 PY
 echo PASS
