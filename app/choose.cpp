@@ -134,7 +134,7 @@ CLI::App* add_choose_command(CLI::App& app, ChooseOptions& options) {
 }
 
 std::optional<Widths> deeper_pipeline(const Design& design, const Widths& w, const std::string& block,
-                                      const std::vector<std::string>& settings) {
+                                      const std::vector<std::string>& settings, const std::string& path_end) {
   const auto user_sets = [&](const char* name) {
     return std::any_of(settings.begin(), settings.end(),
                        [&](const std::string& s) { return s.rfind(std::string(name) + "=", 0) == 0; });
@@ -144,22 +144,24 @@ std::optional<Widths> deeper_pipeline(const Design& design, const Widths& w, con
     const int most = design.persp ? 2 : 1;
     if (w.correction_stages >= most || user_sets("correction_stages")) return std::nullopt;
     next.correction_stages = most;
+  } else if (block == "scanline table" && design.kind == Design::Kind::ConstantDepth) {
+    // The paths into the table: the fill's products and their rounding; a
+    // register between them (a cycle more a band's fill).
+    if (w.fill_product_register || user_sets("fill_product_register")) return std::nullopt;
+    next.fill_product_register = 1;
   } else if (block == "reciprocal") {
     if (w.recip_latency >= 64 || user_sets("recip_latency")) return std::nullopt;
     next.recip_latency = std::min(64, 2 * w.recip_latency);
-  } else if (block == "setup engine") {
-    // First a register after each stage's products (a cycle a stage), then,
-    // as for the affine setup, serial dividers of half as many bits a cycle.
-    // The path's end inside the flattened engine is a cell, so the steps go
-    // in this order whatever the path.
-    if (w.setup_multipliers == 0 && !w.setup_product_register && !user_sets("setup_product_register")) {
-      next.setup_product_register = 1;
-    } else {
-      if (w.div_bits_per_cycle <= 1 || user_sets("div_bits_per_cycle")) return std::nullopt;
-      next.div_bits_per_cycle = w.div_bits_per_cycle / 2;
-    }
-  } else if (block == "affine setup") {
-    // Its serial dividers resolve their quotient bits over div_cycles, which
+  } else if (block == "setup engine" && path_end.find("_divider/") == std::string::npos) {
+    // A stage's multiply-add (the serial dividers are instances named
+    // u_*_divider, rtl/setup_dividers.sv): a register after each stage's
+    // sums of products, a cycle a stage; shared multipliers have it already.
+    if (w.setup_multipliers != 0 || w.setup_product_register || user_sets("setup_product_register"))
+      return std::nullopt;
+    next.setup_product_register = 1;
+  } else if (block == "setup engine" || block == "affine setup") {
+    // Serial dividers (the affine setup's, or the setup engine's when the
+    // path ends in one) resolve their quotient bits over div_cycles, which
     // div_bits_per_cycle sets: half as many bits a cycle, a shorter path
     // (affine at default widths 4 -> 2: 21.35 -> 17.29 ns, docs/choose.md).
     if (w.div_bits_per_cycle <= 1 || user_sets("div_bits_per_cycle")) return std::nullopt;
@@ -298,7 +300,8 @@ int run_choose_command(const ChooseOptions& options) {
     for (size_t i = 0; i < candidates.size(); ++i) {
       const Candidate& c = candidates[i];
       if (spent[i] || !c.area || c.meets_clock) continue;
-      const std::optional<Widths> next = deeper_pipeline(c.design, c.widths, critical_block(*c.area), options.settings);
+      const std::optional<Widths> next = deeper_pipeline(c.design, c.widths, critical_block(*c.area), options.settings,
+                                                                c.area->critical_path_to);
       if (!next) {
         spent[i] = true;
         continue;

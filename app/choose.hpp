@@ -41,9 +41,13 @@ CLI::App* add_choose_command(CLI::App& app, ChooseOptions& options);
 // clock (its name in cdsim area's report), or none when that block has no
 // knob, it is spent, or `settings` (--set NAME=VALUE) names it
 // (docs/choose.md, "The pipelining it searches"): the correction adder's
-// registers, the reciprocal's stages, the affine setup's divider bits a cycle.
+// registers, the reciprocal's stages, the affine setup's divider bits a cycle,
+// the setup engine's products' register or, when the path ends in one of its
+// serial dividers (`path_end`, the critical path's end pin, names the
+// instance), its divider bits a cycle, the fill's products' register for the
+// paths into the scanline table.
 std::optional<Widths> deeper_pipeline(const Design& design, const Widths& widths, const std::string& block,
-                                      const std::vector<std::string>& settings);
+                                      const std::vector<std::string>& settings, const std::string& path_end = "");
 int run_choose_command(const ChooseOptions& options);
 
 }  // namespace cdsim

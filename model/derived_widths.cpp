@@ -102,6 +102,7 @@ DerivedWidths derive(const Widths& w) {
   d.setup_stage_e = schedule.stage_cycle[4];
   d.setup_cycles = schedule.setup_cycles;
   d.setup_count_bits = bits_for_unsigned(d.setup_cycles - 1);
+  d.fill_latency = w.recip_latency + w.fill_product_register;
   d.setup_operand_a_bits = schedule.operand_a_bits;
   d.setup_operand_b_bits = schedule.operand_b_bits;
   d.setup_acc_bits = schedule.acc_bits;

@@ -21,7 +21,8 @@ int64_t kim_integer_cycles(int64_t steps, const Widths& w) {
 }  // namespace
 
 UnitTiming::UnitTiming(const Design& design, const Widths& widths)
-    : design_(design), widths_(widths), setup_cycles_(derive(widths).setup_cycles) {}
+    : design_(design), widths_(widths), setup_cycles_(derive(widths).setup_cycles),
+      fill_latency_(derive(widths).fill_latency) {}
 
 namespace {
 
@@ -92,16 +93,16 @@ TrianglePhases UnitTiming::phases(const TriangleWork& work) const {
       // Walk: the band's pass over the columns.
       p.kind = TrianglePhases::Kind::Bands;
       // A read of top address A issued in pass cycle c waits for the line
-      // written in the band's fill cycle recip_latency + A (read_lag), and
+      // written in the band's fill cycle fill_latency + A (read_lag), and
       // the pass's last cycle, which frees the bank, for the band's last line.
       const auto columns = static_cast<std::ptrdiff_t>(work.columns);
       auto top = work.read_tops.begin();
       for (size_t band = 0; band < work.band_lines.size(); ++band) {
         const auto pass = work.column_pixels.begin() + static_cast<std::ptrdiff_t>(band) * columns;
         TrianglePhases::Band b;
-        b.fill = work.band_lines[band] + widths_.recip_latency;
+        b.fill = work.band_lines[band] + fill_latency_;
         b.walk = pass_cycles(pass, pass + columns, [&](int64_t cycle) {
-          b.read_lag = std::max(b.read_lag, widths_.recip_latency + 1 + *top++ - (cycle - 1));
+          b.read_lag = std::max(b.read_lag, fill_latency_ + 1 + *top++ - (cycle - 1));
         });
         b.read_lag = std::max(b.read_lag, b.fill - b.walk + 1);
         p.bands.push_back(b);

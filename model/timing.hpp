@@ -128,6 +128,7 @@ class UnitTiming {
   Design design_;
   Widths widths_;
   int64_t setup_cycles_;  // from the setup engine's structure (derived_widths.cpp)
+  int64_t fill_latency_;  // a line's issue to its table write (derived_widths.cpp)
 };
 
 // The cycle numbers of one triangle on the unit's clock.

@@ -144,6 +144,9 @@ module cd_scan_unit #(
 
   localparam int TableDepth   = `CD_TABLE_DEPTH;
   localparam int RecipLatency = `CD_RECIP_LATENCY;
+  // A line issued into the fill's reciprocal is written FillLatency cycles
+  // later: RecipLatency, and one more with fill_product_register.
+  localparam int FillLatency  = `CD_FILL_LATENCY;
   localparam int SetupCycles  = `CD_SETUP_CYCLES;
   localparam int PixelBits    = `CD_PIXEL_BITS;
   localparam int LineBits     = `CD_LINE_BITS;
@@ -159,10 +162,11 @@ module cd_scan_unit #(
   localparam int SlopeBits    = `CD_EDGE_SLOPE_BITS;
   localparam int SramDepth    = TableDepth << MaxDensityLog2;
   localparam int AddrBits     = $clog2(SramDepth);
-  // Lines of a band, and fill cycles: at most SramDepth + RecipLatency.
+  // Lines of a band, and fill cycles: at most SramDepth + FillLatency (a
+  // drain at most RecipLatency).
   localparam int BandBits     = LineBits + 2;
-  localparam int StepCountBits = $clog2(SramDepth + RecipLatency + 1) + 1 > PixelBits + 1
-                                 ? $clog2(SramDepth + RecipLatency + 1) + 1 : PixelBits + 1;
+  localparam int StepCountBits = $clog2(SramDepth + FillLatency + 1) + 1 > PixelBits + 1
+                                 ? $clog2(SramDepth + FillLatency + 1) + 1 : PixelBits + 1;
   localparam int FlagBanded   = `CD_FLAG_BANDED;
   localparam int FifoDepth    = `CD_SETUP_FIFO_DEPTH;
 
@@ -1035,7 +1039,7 @@ module cd_scan_unit #(
   assign back_free = state_q == StIdle || (state_q == StRecord && rec_ready_i);
   assign take = p_valid && back_free && !hold;
   assign band_ready = fill_q == FlFill &&
-                      BandBits'($signed({1'b0, fl_count_q})) == fl_band_lines_q + BandBits'(RecipLatency - 1);
+                      BandBits'($signed({1'b0, fl_count_q})) == fl_band_lines_q + BandBits'(FillLatency - 1);
   assign more_fill = fl_band_hi_q < fl_line_hi_q;
   assign fill_done = band_ready && !more_fill;
 
@@ -1456,7 +1460,7 @@ module cd_scan_unit #(
   // (its own line, or the correction neighbour above), known before the pixel
   // moves, so that a starved cycle offers no fragment and a fragment offered
   // is never withdrawn. Line A of a band is written in its fill cycle
-  // RecipLatency + A, so a read of top address A may go once fl_count_q, the
+  // FillLatency + A, so a read of top address A may go once fl_count_q, the
   // band's fill cycle, is past it; once the band is full, always. The band's
   // last walk cycle, which frees its bank, waits for the band to be full.
   if (EarlyWalk && HasTable) begin : gen_early_walk
@@ -1487,7 +1491,7 @@ module cd_scan_unit #(
                  (state_q == StPixel && minor_q == last_q && (span_last_q || (!column_has_pixels && at_last_column)));
     end
     assign starve = !per_pixel && !full_q[walk_bank_q] &&
-                    (next_end || (next_read && CmpBits'(next_top) + CmpBits'(RecipLatency) >=
+                    (next_end || (next_read && CmpBits'(next_top) + CmpBits'(FillLatency) >=
                                                   CmpBits'($signed({1'b0, fl_count_q}))));
   end else begin : gen_no_early_walk
     assign starve = 1'b0;

@@ -1,8 +1,9 @@
 // Setup engine, stage E and the table fill (rtl/setup_engine.sv): q, U and V
 // on the first line of the first band, then one line per fill_valid_i cycle
-// into the reciprocal pipeline, and RecipLatency cycles later the line's
-// table word, T = U_k / q_k and S = SU / q_k (cd-persp: and eps = q_line /
-// q_k). Twin of cdsim::fill_line (model/setup_engine.cpp). Stage E's product
+// into the reciprocal pipeline, and RecipLatency cycles later (one more with
+// fill_product_register, CD_FILL_LATENCY in all) the line's table word,
+// T = U_k / q_k and S = SU / q_k (cd-persp: and eps = q_line / q_k). Twin of
+// cdsim::fill_line (model/setup_engine.cpp). Stage E's product
 // (results CD_SETUP_Q_LINE .. CD_SETUP_V_LINE) is read in stage_i.
 `include "cd_widths.svh"
 `default_nettype none
@@ -253,7 +254,8 @@ module setup_fill #(
   logic signed [ProductShiftBits-1:0] shift_s;
   logic signed [TBits-1:0]          t_u, t_v;
   logic signed [SBits-1:0]          s_u, s_v;
-  logic [5:0]                       entry_saturated;
+  logic [1:0]                       s_operand_saturated;  // S's numerators narrowed
+  logic [3:0]                       entry_saturated;      // the products rounded
 
   always_comb begin
     {result_addr, result_depth_out, result_exponent, operand_tu, operand_tv, operand_t_saturated} =
@@ -263,10 +265,10 @@ module setup_fill #(
   end
   shift_round #(.InBits(StepUvBits), .OutBits(OperandSBits), .ShiftBits(ProductShiftBits), .MaxLeft(MaxSLeft))
     u_operand_su (.enable_i(result_valid), .in_i(fill_step_u), .shift_i(shift_s), .out_o(operand_su),
-                  .saturated_o(entry_saturated[4]));
+                  .saturated_o(s_operand_saturated[0]));
   shift_round #(.InBits(StepUvBits), .OutBits(OperandSBits), .ShiftBits(ProductShiftBits), .MaxLeft(MaxSLeft))
     u_operand_sv (.enable_i(result_valid), .in_i(fill_step_v), .shift_i(shift_s), .out_o(operand_sv),
-                  .saturated_o(entry_saturated[5]));
+                  .saturated_o(s_operand_saturated[1]));
 
   always_comb begin
     product_tu = '0;
@@ -281,17 +283,50 @@ module setup_fill #(
     end
   end
 
+  // cd-persp's eps = q_line R (below): its product and its operand's
+  // saturation go through the product stage with the others.
+  logic signed [ProductEpsBits-1:0] product_eps, n_product_eps;
+  logic                             eps_operand_saturated, n_eps_operand_saturated;
+
+  // The product stage: with fill_product_register the products, and what the
+  // word takes beside them, are registered before they are rounded (n_*: the
+  // stage's outputs, the same values a cycle later); a held unit keeps them.
+  localparam bit ProductRegister = `CD_FILL_PRODUCT_REGISTER != 0;
+  localparam int StageBits = AddrBits + 4 + 2 * ProductTBits + 2 * ProductSBits + ProductEpsBits + 1;
+  logic                             n_valid;
+  logic [AddrBits-1:0]              n_addr;
+  logic                             n_depth_out, n_t_saturated;
+  logic [1:0]                       n_s_saturated;
+  logic signed [ProductTBits-1:0]   n_product_tu, n_product_tv;
+  logic signed [ProductSBits-1:0]   n_product_su, n_product_sv;
+  context_register #(.Bits(StageBits), .Present(ProductRegister)) u_product_stage (
+    .clk_i, .load_i(!hold_i),
+    .d_i({result_addr, result_depth_out, operand_t_saturated, s_operand_saturated, product_tu, product_tv,
+          product_su, product_sv, product_eps, eps_operand_saturated}),
+    .q_o({n_addr, n_depth_out, n_t_saturated, n_s_saturated, n_product_tu, n_product_tv,
+          n_product_su, n_product_sv, n_product_eps, n_eps_operand_saturated}));
+  if (ProductRegister) begin : gen_product_valid
+    logic valid_q;
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) valid_q <= 1'b0;
+      else if (!hold_i) valid_q <= result_valid;
+    end
+    assign n_valid = valid_q;
+  end else begin : gen_no_product_valid
+    assign n_valid = result_valid;
+  end
+
   shift_round #(.InBits(ProductTBits), .OutBits(TBits), .ShiftBits(ProductShiftBits))
-    u_narrow_tu (.enable_i(result_valid), .in_i(product_tu), .shift_i(QuotientShift), .out_o(t_u),
+    u_narrow_tu (.enable_i(n_valid), .in_i(n_product_tu), .shift_i(QuotientShift), .out_o(t_u),
                  .saturated_o(entry_saturated[0]));
   shift_round #(.InBits(ProductTBits), .OutBits(TBits), .ShiftBits(ProductShiftBits))
-    u_narrow_tv (.enable_i(result_valid), .in_i(product_tv), .shift_i(QuotientShift), .out_o(t_v),
+    u_narrow_tv (.enable_i(n_valid), .in_i(n_product_tv), .shift_i(QuotientShift), .out_o(t_v),
                  .saturated_o(entry_saturated[1]));
   shift_round #(.InBits(ProductSBits), .OutBits(SBits), .ShiftBits(ProductShiftBits))
-    u_narrow_su (.enable_i(result_valid), .in_i(product_su), .shift_i(QuotientShift), .out_o(s_u),
+    u_narrow_su (.enable_i(n_valid), .in_i(n_product_su), .shift_i(QuotientShift), .out_o(s_u),
                  .saturated_o(entry_saturated[2]));
   shift_round #(.InBits(ProductSBits), .OutBits(SBits), .ShiftBits(ProductShiftBits))
-    u_narrow_sv (.enable_i(result_valid), .in_i(product_sv), .shift_i(QuotientShift), .out_o(s_v),
+    u_narrow_sv (.enable_i(n_valid), .in_i(n_product_sv), .shift_i(QuotientShift), .out_o(s_v),
                  .saturated_o(entry_saturated[3]));
 
   // cd-persp: eps = q_line R: q_line narrowed by e to eps_frac + guard
@@ -303,26 +338,24 @@ module setup_fill #(
   logic [WordBits-1:0] eps_part;
   if (HasPersp) begin : gen_eps
     logic signed [EpsBits-1:0]          eps, eps_rounded;
-    logic                               eps_saturated;
+    logic                               eps_saturated, eps_rounding_saturated;
     logic signed [OperandEpsBits-1:0]   operand_eps;
-    logic signed [ProductEpsBits-1:0]   product_eps;
     logic signed [ProductShiftBits-1:0] shift_eps;
-    logic [1:0]                         eps_overflow;
     assign shift_eps = result_valid ? ProductShiftBits'($signed({1'b0, result_exponent})) - ProductShiftBits'(OperandEpsFrac)
                                     : '0;
     shift_round #(.InBits(PlaneStepQBits), .OutBits(OperandEpsBits), .ShiftBits(ProductShiftBits), .MaxLeft(MaxEpsLeft))
       u_operand_eps (.enable_i(result_valid), .in_i(fill_q_per_line), .shift_i(shift_eps), .out_o(operand_eps),
-                     .saturated_o(eps_overflow[0]));
+                     .saturated_o(eps_operand_saturated));
     always_comb begin
       product_eps = '0;
       if (result_valid) product_eps = ProductEpsBits'(operand_eps) * ProductEpsBits'($signed({1'b0, recip}));
     end
     shift_round #(.InBits(ProductEpsBits), .OutBits(EpsBits), .ShiftBits(ProductShiftBits))
-      u_narrow_eps (.enable_i(result_valid), .in_i(product_eps), .shift_i(QuotientShift), .out_o(eps_rounded),
-                    .saturated_o(eps_overflow[1]));
+      u_narrow_eps (.enable_i(n_valid), .in_i(n_product_eps), .shift_i(QuotientShift), .out_o(eps_rounded),
+                    .saturated_o(eps_rounding_saturated));
     always_comb begin
       eps = eps_rounded;
-      eps_saturated = |eps_overflow;
+      eps_saturated = n_eps_operand_saturated || eps_rounding_saturated;
       if (eps_rounded == {1'b1, {(EpsBits - 1){1'b0}}}) begin
         eps = eps_rounded + EpsBits'(1);
         eps_saturated = 1'b1;
@@ -334,7 +367,11 @@ module setup_fill #(
       eps_part[`CD_WORD_EPS_SATURATED_BIT] = eps_saturated;
     end
   end else begin : gen_no_eps
+    assign product_eps = '0;
+    assign eps_operand_saturated = 1'b0;
     assign eps_part = '0;
+    logic unused_eps;
+    assign unused_eps = ^{n_product_eps, n_eps_operand_saturated};
   end
 
   always_comb begin
@@ -343,11 +380,11 @@ module setup_fill #(
     write_entry_o[`CD_WORD_TV_LSB +: TBits] = t_v;
     write_entry_o[`CD_WORD_SU_LSB +: SBits] = s_u;
     write_entry_o[`CD_WORD_SV_LSB +: SBits] = s_v;
-    write_entry_o[`CD_WORD_SATURATED_BIT] = |entry_saturated || operand_t_saturated;
-    write_entry_o[`CD_WORD_DEPTH_RANGE_BIT] = result_depth_out;
+    write_entry_o[`CD_WORD_SATURATED_BIT] = |entry_saturated || |n_s_saturated || n_t_saturated;
+    write_entry_o[`CD_WORD_DEPTH_RANGE_BIT] = n_depth_out;
   end
-  assign write_valid_o = result_valid && !hold_i;
-  assign write_addr_o = result_addr;
+  assign write_valid_o = n_valid && !hold_i;
+  assign write_addr_o = n_addr;
 
 endmodule
 

@@ -215,9 +215,10 @@ TEST(DesignTable, EverySizedWidthMovesTheDesignsResults) {
 // choose's pipelining steps (docs/choose.md): the correction adder's
 // registers for a table design whose clock the adder or the control sets (2
 // with persp, 1 without), twice the reciprocal's stages for the reciprocal,
-// half the divider bits a cycle for the affine setup, the products' register
-// then half the divider bits for the setup engine, nothing for a block
-// without a knob, a knob spent or one the user set.
+// half the divider bits a cycle for the affine setup, for the setup engine
+// the products' register or, on a path into a divider, half its bits a
+// cycle, the fill's products' register for the paths into the table,
+// nothing for a block without a knob, a knob spent or one the user set.
 TEST(ChoosePipelining, OneStepOfTheBlockThatSetsTheClock) {
   const Widths w;
   const Design& persp = find_design("cd-persp");
@@ -237,21 +238,33 @@ TEST(ChoosePipelining, OneStepOfTheBlockThatSetsTheClock) {
   deep.recip_latency = 64;
   EXPECT_FALSE(deeper_pipeline(divide, deep, "reciprocal", {}).has_value());
   EXPECT_FALSE(deeper_pipeline(divide, w, "reciprocal", {"recip_latency=4"}).has_value());
-  // The setup engine: its products' register first (one multiplier a
-  // product only), then half the divider bits a cycle.
-  ASSERT_TRUE(deeper_pipeline(persp, w, "setup engine", {}).has_value());
-  EXPECT_EQ(deeper_pipeline(persp, w, "setup engine", {})->setup_product_register, 1);
-  EXPECT_EQ(deeper_pipeline(persp, w, "setup engine", {})->div_bits_per_cycle, w.div_bits_per_cycle);
+  // The setup engine: a path into a stage's multiply-add takes the
+  // products' register (one multiplier a product only); a path into one of
+  // its serial dividers (an instance u_*_divider) half the bits a cycle.
+  const std::string stage_end = "u_setup_engine/_c94709_/D";
+  const std::string divider_end = "u_setup_engine/u_dividers.gen_edge_dividers[1].u_bound_divider/_c12_/D";
+  ASSERT_TRUE(deeper_pipeline(persp, w, "setup engine", {}, stage_end).has_value());
+  EXPECT_EQ(deeper_pipeline(persp, w, "setup engine", {}, stage_end)->setup_product_register, 1);
+  EXPECT_EQ(deeper_pipeline(persp, w, "setup engine", {}, stage_end)->div_bits_per_cycle, w.div_bits_per_cycle);
+  ASSERT_TRUE(deeper_pipeline(persp, w, "setup engine", {}, divider_end).has_value());
+  EXPECT_EQ(deeper_pipeline(persp, w, "setup engine", {}, divider_end)->setup_product_register, 0);
+  EXPECT_EQ(deeper_pipeline(persp, w, "setup engine", {}, divider_end)->div_bits_per_cycle, w.div_bits_per_cycle / 2);
   Widths registered = w;
   registered.setup_product_register = 1;
-  ASSERT_TRUE(deeper_pipeline(linear, registered, "setup engine", {}).has_value());
-  EXPECT_EQ(deeper_pipeline(linear, registered, "setup engine", {})->div_bits_per_cycle, w.div_bits_per_cycle / 2);
+  EXPECT_FALSE(deeper_pipeline(linear, registered, "setup engine", {}, stage_end).has_value());
   Widths shared = w;
   shared.setup_multipliers = 2;
-  EXPECT_EQ(deeper_pipeline(linear, shared, "setup engine", {})->setup_product_register, 0);
-  EXPECT_EQ(deeper_pipeline(linear, shared, "setup engine", {})->div_bits_per_cycle, w.div_bits_per_cycle / 2);
-  EXPECT_EQ(deeper_pipeline(linear, w, "setup engine", {"setup_product_register=0"})->div_bits_per_cycle,
-            w.div_bits_per_cycle / 2);
+  EXPECT_FALSE(deeper_pipeline(linear, shared, "setup engine", {}, stage_end).has_value());
+  EXPECT_FALSE(deeper_pipeline(linear, w, "setup engine", {"setup_product_register=0"}, stage_end).has_value());
+  EXPECT_FALSE(deeper_pipeline(linear, w, "setup engine", {"div_bits_per_cycle=4"}, divider_end).has_value());
+  // The paths into the table: the fill's products' register, table designs only.
+  ASSERT_TRUE(deeper_pipeline(linear, w, "scanline table", {}).has_value());
+  EXPECT_EQ(deeper_pipeline(linear, w, "scanline table", {})->fill_product_register, 1);
+  Widths filled = w;
+  filled.fill_product_register = 1;
+  EXPECT_FALSE(deeper_pipeline(linear, filled, "scanline table", {}).has_value());
+  EXPECT_FALSE(deeper_pipeline(linear, w, "scanline table", {"fill_product_register=0"}).has_value());
+  EXPECT_FALSE(deeper_pipeline(divide, w, "scanline table", {}).has_value());
   const Design& affine = find_design("affine");
   ASSERT_TRUE(deeper_pipeline(affine, w, "affine setup", {}).has_value());
   EXPECT_EQ(deeper_pipeline(affine, w, "affine setup", {})->div_bits_per_cycle, w.div_bits_per_cycle / 2);
