@@ -24,7 +24,7 @@
 //
 // Cycles (docs/microarchitecture.md, model/timing.cpp): a walk takes one cycle
 // per column of every band and one per pixel (COLUMN, PIXEL); a fill lines +
-// recip_latency; divide DRAINs its reciprocal pipeline, Kim its fraction stage
+// fill_latency; divide DRAINs its reciprocal pipeline, Kim its fraction stage
 // (rtl/kim_datapath.sv); a per-pixel design at depth 1 or 2 spends an INIT
 // cycle loading the walker from the back's context. A fragment offered and not taken holds
 // the whole unit for the cycle. The record counts the clocks from the cycle
