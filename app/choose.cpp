@@ -153,12 +153,19 @@ std::optional<Widths> deeper_pipeline(const Design& design, const Widths& w, con
     if (w.recip_latency >= 64 || user_sets("recip_latency")) return std::nullopt;
     next.recip_latency = std::min(64, 2 * w.recip_latency);
   } else if (block == "setup engine" && path_end.find("_divider/") == std::string::npos) {
-    // A stage's multiply-add (the serial dividers are instances named
-    // u_*_divider, rtl/setup_dividers.sv): a register after each stage's
-    // sums of products, a cycle a stage; shared multipliers have it already.
-    if (w.setup_multipliers != 0 || w.setup_product_register || user_sets("setup_product_register"))
-      return std::nullopt;
-    next.setup_product_register = 1;
+    // A stage's multiply-add and what follows it (the serial dividers are
+    // instances named u_*_divider, rtl/setup_dividers.sv): first a register
+    // after each stage's sums of products, a cycle a stage (shared
+    // multipliers have it already); then stage D's line range, which bounds
+    // the engine once its sums are registered (docs/area.md), a cycle of its
+    // own.
+    const bool product_step = w.setup_multipliers == 0 && !w.setup_product_register;
+    if (product_step && !user_sets("setup_product_register")) {
+      next.setup_product_register = 1;
+    } else {
+      if (w.setup_line_register || user_sets("setup_line_register")) return std::nullopt;
+      next.setup_line_register = 1;
+    }
   } else if (block == "setup engine" || block == "affine setup") {
     // Serial dividers (the affine setup's, or the setup engine's when the
     // path ends in one) resolve their quotient bits over div_cycles, which

@@ -86,7 +86,9 @@ SetupSchedule setup_schedule(const Widths& w, const DerivedWidths& d) {
     // are formed, or, with setup_product_register, from a register a cycle on.
     const int product_cycles = multipliers > 0 ? *std::max_element(load.begin(), load.end())
                                                : w.setup_product_register;
-    s.stage_cycle[stage] = phase_start + product_cycles;
+    // With setup_line_register stage D takes one cycle more: its kappa
+    // extremes are registered a cycle before the stage (setup_stage_d.sv).
+    s.stage_cycle[stage] = phase_start + product_cycles + (stage == 3 ? w.setup_line_register : 0);
     if (stage == 2) s.div_done = s.stage_cycle[2] + d.div_cycles;
     phase_start = s.stage_cycle[stage] + 1;
   }

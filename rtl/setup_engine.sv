@@ -216,13 +216,15 @@ module setup_engine #(
     end
   end
 
-  logic stage_a, stage_b, stage_c, stage_d, stage_e;
+  logic stage_a, stage_b, stage_c, stage_d, stage_e, stage_d_kappa;
   logic window_a, window_b, window_c, window_d;
   assign stage_a = setup_i && stage_count_i == CountBits'(StageA);
   assign stage_b = setup_i && stage_count_i == CountBits'(StageB);
   assign stage_c = setup_i && stage_count_i == CountBits'(StageC);
   assign stage_d = setup_i && stage_count_i == CountBits'(StageD);
   assign stage_e = setup_i && stage_count_i == CountBits'(StageE);
+  // Stage D's kappa extremes: a cycle before stage D with setup_line_register.
+  assign stage_d_kappa = setup_i && stage_count_i == CountBits'(StageD - `CD_SETUP_LINE_REGISTER);
   // A stage's operands are formed from its first product cycle to its own.
   assign window_a = setup_i && stage_count_i <= CountBits'(StageA);
   assign window_b = setup_i && stage_count_i > CountBits'(StageA) && stage_count_i <= CountBits'(StageB);
@@ -434,6 +436,7 @@ module setup_engine #(
     .clk_i,
     .window_i          (window_d),
     .stage_i           (stage_d),
+    .kappa_stage_i     (stage_d_kappa),
     .x_i               (x_q),
     .y_i               (y_q),
     .density_log2_i    (density_log2_q),

@@ -54,6 +54,9 @@ module setup_stage_d #(
   input  logic                             clk_i,
   input  logic                             window_i,
   input  logic                             stage_i,
+  // The cycle that forms kappa's extremes: stage_i, or the one before it
+  // with CD_SETUP_LINE_REGISTER.
+  input  logic                             kappa_stage_i,
   // The triangle as loaded (vertex i in bits i*W +: W).
   input  logic [3*CoordBits-1:0]           x_i,
   input  logic [3*CoordBits-1:0]           y_i,
@@ -351,10 +354,30 @@ module setup_stage_d #(
     end
   end
 
+  // The vertices' kappa and their extremes, in kappa_stage_i: with
+  // setup_line_register a cycle before stage_i, registered for the rest of
+  // the line range (the phase, the horizon's comparators, the range and its
+  // clamps), which then takes a cycle of its own; else in stage_i itself.
+  localparam bit LineRegister = `CD_SETUP_LINE_REGISTER != 0;
+  logic signed [KappaBits-1:0]     kappa_lo_d, kappa_hi_d;
   always_comb begin
-    kappa_lo = '0;
-    kappa_hi = '0;
+    kappa_lo_d = '0;
+    kappa_hi_d = '0;
     kappa = '0;
+    if (kappa_stage_i && HasLines) begin
+      for (int i = 0; i < 3; i++) begin
+        kappa = ((KappaBits'(vertex_minor[i]) <<< GFrac) -
+                 KappaBits'(products_i[AccBits*(`CD_SETUP_KAPPA0 + i - FirstResult) +: AccBits]))  // g major offset
+                <<< density_log2_i;
+        if (i == 0 || kappa < kappa_lo_d) kappa_lo_d = kappa;
+        if (i == 0 || kappa > kappa_hi_d) kappa_hi_d = kappa;
+      end
+    end
+  end
+  context_register #(.Bits(2 * KappaBits), .Present(LineRegister)) u_kappa_stage (
+    .clk_i, .load_i(kappa_stage_i), .d_i({kappa_lo_d, kappa_hi_d}), .q_o({kappa_lo, kappa_hi}));
+
+  always_comb begin
     line_lo = '0;
     line_hi = '0;
     floor_lines = '0;
@@ -376,13 +399,6 @@ module setup_stage_d #(
     fallback_gaps = '0;
     fallback_d = '0;
     if (stage_i && HasLines) begin
-      for (int i = 0; i < 3; i++) begin
-        kappa = ((KappaBits'(vertex_minor[i]) <<< GFrac) -
-                 KappaBits'(products_i[AccBits*(`CD_SETUP_KAPPA0 + i - FirstResult) +: AccBits]))  // g major offset
-                <<< density_log2_i;
-        if (i == 0 || kappa < kappa_lo) kappa_lo = kappa;
-        if (i == 0 || kappa > kappa_hi) kappa_hi = kappa;
-      end
       // The phase: q grows with kappa when it grows along the minor axis, so
       // the far vertex has the least kappa (floor) or else the greatest (ceil):
       // its kappa in 2^-PhaseFrac gaps, modulo one gap.

@@ -55,6 +55,21 @@ TEST(SetupSchedule, ProductRegisterAddsACycleToEveryStage) {
   EXPECT_THROW(validate(w), std::invalid_argument);
 }
 
+// setup_line_register: stage D a cycle later, the others as before it.
+TEST(SetupSchedule, LineRegisterAddsACycleToStageD) {
+  for (int multipliers : {0, 2}) {
+    Widths w = with_multipliers(multipliers, 32);
+    const DerivedWidths before = derive(w);
+    w.setup_line_register = 1;
+    const DerivedWidths after = derive(w);
+    EXPECT_EQ(after.setup_stage_c, before.setup_stage_c);
+    EXPECT_EQ(after.setup_div_done, before.setup_div_done);
+    EXPECT_EQ(after.setup_stage_d, before.setup_stage_d + 1);
+    EXPECT_EQ(after.setup_stage_e, before.setup_stage_e + 1);
+    EXPECT_EQ(after.setup_cycles, before.setup_cycles + 1);
+  }
+}
+
 // Stage windows as rtl/setup_engine.sv forms its operands.
 std::pair<int, int> window(const SetupSchedule& s, int stage) {
   if (stage == 0) return {0, s.stage_cycle[0]};

@@ -249,13 +249,21 @@ TEST(ChoosePipelining, OneStepOfTheBlockThatSetsTheClock) {
   ASSERT_TRUE(deeper_pipeline(persp, w, "setup engine", {}, divider_end).has_value());
   EXPECT_EQ(deeper_pipeline(persp, w, "setup engine", {}, divider_end)->setup_product_register, 0);
   EXPECT_EQ(deeper_pipeline(persp, w, "setup engine", {}, divider_end)->div_bits_per_cycle, w.div_bits_per_cycle / 2);
+  // Then (sums registered, or shared multipliers) stage D's line register.
   Widths registered = w;
   registered.setup_product_register = 1;
-  EXPECT_FALSE(deeper_pipeline(linear, registered, "setup engine", {}, stage_end).has_value());
+  ASSERT_TRUE(deeper_pipeline(linear, registered, "setup engine", {}, stage_end).has_value());
+  EXPECT_EQ(deeper_pipeline(linear, registered, "setup engine", {}, stage_end)->setup_line_register, 1);
   Widths shared = w;
   shared.setup_multipliers = 2;
-  EXPECT_FALSE(deeper_pipeline(linear, shared, "setup engine", {}, stage_end).has_value());
-  EXPECT_FALSE(deeper_pipeline(linear, w, "setup engine", {"setup_product_register=0"}, stage_end).has_value());
+  ASSERT_TRUE(deeper_pipeline(linear, shared, "setup engine", {}, stage_end).has_value());
+  EXPECT_EQ(deeper_pipeline(linear, shared, "setup engine", {}, stage_end)->setup_product_register, 0);
+  EXPECT_EQ(deeper_pipeline(linear, shared, "setup engine", {}, stage_end)->setup_line_register, 1);
+  EXPECT_EQ(deeper_pipeline(linear, w, "setup engine", {"setup_product_register=0"}, stage_end)->setup_line_register, 1);
+  Widths both = registered;
+  both.setup_line_register = 1;
+  EXPECT_FALSE(deeper_pipeline(linear, both, "setup engine", {}, stage_end).has_value());
+  EXPECT_FALSE(deeper_pipeline(linear, registered, "setup engine", {"setup_line_register=0"}, stage_end).has_value());
   EXPECT_FALSE(deeper_pipeline(linear, w, "setup engine", {"div_bits_per_cycle=4"}, divider_end).has_value());
   // The paths into the table: the fill's products' register, table designs only.
   ASSERT_TRUE(deeper_pipeline(linear, w, "scanline table", {}).has_value());
