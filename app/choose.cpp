@@ -152,6 +152,11 @@ std::optional<Widths> deeper_pipeline(const Design& design, const Widths& w, con
   } else if (block == "reciprocal") {
     if (w.recip_latency >= 64 || user_sets("recip_latency")) return std::nullopt;
     next.recip_latency = std::min(64, 2 * w.recip_latency);
+  } else if (block == "setup engine" && path_end.find("u_multipliers/") != std::string::npos) {
+    // Into the multipliers' own registers (shared multipliers' accumulators,
+    // or the sums with setup_product_register): a multiply itself, which no
+    // knob cuts.
+    return std::nullopt;
   } else if (block == "setup engine" && path_end.find("_divider/") == std::string::npos) {
     // A stage's multiply-add and what follows it (the serial dividers are
     // instances named u_*_divider, rtl/setup_dividers.sv): first a register

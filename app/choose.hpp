@@ -42,9 +42,10 @@ CLI::App* add_choose_command(CLI::App& app, ChooseOptions& options);
 // knob, it is spent, or `settings` (--set NAME=VALUE) names it
 // (docs/choose.md, "The pipelining it searches"): the correction adder's
 // registers, the reciprocal's stages, the affine setup's divider bits a cycle,
-// the setup engine's products' register or, when the path ends in one of its
-// serial dividers (`path_end`, the critical path's end pin, names the
-// instance), its divider bits a cycle, the fill's products' register for the
+// the setup engine's products' register, then its line register, or, when
+// the path ends in one of its serial dividers (`path_end`, the critical
+// path's end pin, names the instance), its divider bits a cycle (nothing when
+// it ends in the multipliers' own registers), the fill's products' register for the
 // paths into the scanline table.
 std::optional<Widths> deeper_pipeline(const Design& design, const Widths& widths, const std::string& block,
                                       const std::vector<std::string>& settings, const std::string& path_end = "");

@@ -260,6 +260,11 @@ TEST(ChoosePipelining, OneStepOfTheBlockThatSetsTheClock) {
   EXPECT_EQ(deeper_pipeline(linear, shared, "setup engine", {}, stage_end)->setup_product_register, 0);
   EXPECT_EQ(deeper_pipeline(linear, shared, "setup engine", {}, stage_end)->setup_line_register, 1);
   EXPECT_EQ(deeper_pipeline(linear, w, "setup engine", {"setup_product_register=0"}, stage_end)->setup_line_register, 1);
+  // A path into the multipliers' own registers (shared, or the registered
+  // sums): a multiply, no step.
+  const std::string multiplier_end = "u_setup_engine/u_multipliers/_c26763_";
+  EXPECT_FALSE(deeper_pipeline(linear, shared, "setup engine", {}, multiplier_end).has_value());
+  EXPECT_FALSE(deeper_pipeline(linear, w, "setup engine", {}, multiplier_end).has_value());
   Widths both = registered;
   both.setup_line_register = 1;
   EXPECT_FALSE(deeper_pipeline(linear, both, "setup engine", {}, stage_end).has_value());
