@@ -20,9 +20,8 @@ int64_t kim_integer_cycles(int64_t steps, const Widths& w) {
 }
 }  // namespace
 
-UnitTiming::UnitTiming(const Design& design, const Widths& widths)
-    : design_(design), widths_(widths), setup_cycles_(derive(widths).setup_cycles),
-      fill_latency_(derive(widths).fill_latency) {}
+UnitTiming::UnitTiming(const Design& design, const Widths& widths, const DerivedWidths& derived)
+    : design_(design), widths_(widths), setup_cycles_(derived.setup_cycles), fill_latency_(derived.fill_latency) {}
 
 namespace {
 

@@ -28,6 +28,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "derived_widths.hpp"
 #include "design.hpp"
 #include "widths.hpp"
 
@@ -114,7 +115,7 @@ struct TriangleCycles {
 
 class UnitTiming {
  public:
-  UnitTiming(const Design& design, const Widths& widths);
+  UnitTiming(const Design& design, const Widths& widths) : UnitTiming(design, widths, derive(widths)) {}
 
   // The phases of one triangle's work.
   TrianglePhases phases(const TriangleWork& work) const;
@@ -129,6 +130,7 @@ class UnitTiming {
   Widths widths_;
   int64_t setup_cycles_;  // from the setup engine's structure (derived_widths.cpp)
   int64_t fill_latency_;  // a line's issue to its table write (derived_widths.cpp)
+  UnitTiming(const Design& design, const Widths& widths, const DerivedWidths& derived);
 };
 
 // The cycle numbers of one triangle on the unit's clock.
