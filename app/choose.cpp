@@ -116,6 +116,10 @@ CLI::App* add_choose_command(CLI::App& app, ChooseOptions& options) {
                   "the clock the synthesised unit must reach: f_max by OpenSTA (0: none)")
       ->check(cli::number_in(0.0, 100000.0))
       ->capture_default_str();
+  cmd->add_option("--pipeline-steps", options.pipeline_steps,
+                  "pipelining steps a design below --clock-mhz may take, each one synthesis more (0: none)")
+      ->check(CLI::Range(0u, 16u))
+      ->capture_default_str();
   cmd->add_option("--json", options.json_path, "also write the ranking as JSON to this file");
   cmd->add_flag("!--no-verify", options.verify, "do not regress the winner on the RTL");
   cmd->add_option("--verify-random", options.verify_random,
@@ -187,6 +191,11 @@ std::optional<Widths> deeper_pipeline(const Design& design, const Widths& w, con
     return std::nullopt;
   }
   return next;
+}
+
+PipeliningVerdict pipelining_verdict(double kept_fmax_mhz, double stepped_fmax_mhz, bool on_trial) {
+  if (stepped_fmax_mhz > kept_fmax_mhz) return PipeliningVerdict::Keep;
+  return on_trial ? PipeliningVerdict::Stop : PipeliningVerdict::Trial;
 }
 
 int run_choose_command(const ChooseOptions& options) {
@@ -298,20 +307,24 @@ int run_choose_command(const ChooseOptions& options) {
     }
     take_area(c, areas[a++]);
   }
-  // The pipelining: a design below the clock takes, up to three times, one
-  // more step of the pipelining of the block that sets its clock
-  // (deeper_pipeline), runs its scenes again for the cycles that adds (the
-  // values are the same), and is synthesised again; a step is kept if the
-  // design still meets the rate and its f_max rose, and the search ends for it
-  // otherwise.
+  // The pipelining: a design below the clock takes, up to --pipeline-steps
+  // times (3 by default), one more step of the pipelining of the block that
+  // sets its clock (deeper_pipeline), runs its scenes again for the cycles
+  // that adds (the values are the same), and is synthesised again. A step is
+  // kept if the design still meets the rate and its f_max rose. One that did
+  // not raise it is tried once more with the next step on top (of the block
+  // that now sets the clock: when two paths are close, cutting one only
+  // shows the other); both are kept if that raised f_max, and the search
+  // ends for the design otherwise.
   std::vector<bool> spent(candidates.size(), false);
-  for (int round = 0; round < 3 && options.clock_mhz > 0; ++round) {
+  std::vector<std::optional<Candidate>> trial(candidates.size());  // a step kept on trial
+  for (unsigned round = 0; round < options.pipeline_steps && options.clock_mhz > 0; ++round) {
     std::vector<size_t> retried;
     std::vector<AreaJob> jobs_again;
     std::vector<Candidate> deeper;
     for (size_t i = 0; i < candidates.size(); ++i) {
-      const Candidate& c = candidates[i];
-      if (spent[i] || !c.area || c.meets_clock) continue;
+      if (spent[i] || !candidates[i].area || candidates[i].meets_clock) continue;
+      const Candidate& c = trial[i] ? *trial[i] : candidates[i];
       const std::optional<Widths> next = deeper_pipeline(c.design, c.widths, critical_block(*c.area), options.settings,
                                                                 c.area->critical_path_to);
       if (!next) {
@@ -328,8 +341,10 @@ int run_choose_command(const ChooseOptions& options) {
         spent[i] = true;
         continue;
       }
-      fmt::print(stderr, "choose: {} below {:g} MHz ({:.1f}, the {}): synthesised again with {}\n", c.design.name,
-                 options.clock_mhz, c.area->fmax_mhz, critical_block(*c.area), pipeline_settings(p.widths, c.widths));
+      fmt::print(stderr, "choose: {} below {:g} MHz ({:.1f}, the {}){}: synthesised again with {}\n", c.design.name,
+                 options.clock_mhz, c.area->fmax_mhz, critical_block(*c.area),
+                 trial[i] ? fmt::format(", on trial over {:.1f}", candidates[i].area->fmax_mhz) : "",
+                 pipeline_settings(p.widths, candidates[i].widths));
       retried.push_back(i);
       jobs_again.push_back({p.design, p.widths});
       deeper.push_back(p);
@@ -337,11 +352,21 @@ int run_choose_command(const ChooseOptions& options) {
     if (jobs_again.empty()) break;
     const std::vector<AreaReport> areas_again = synthesise_areas(jobs_again, area_options, options.jobs);
     for (size_t k = 0; k < retried.size(); ++k) {
+      const size_t i = retried[k];
       take_area(deeper[k], areas_again[k]);
-      if (deeper[k].area->fmax_mhz > candidates[retried[k]].area->fmax_mhz)
-        candidates[retried[k]] = deeper[k];
-      else
-        spent[retried[k]] = true;
+      switch (pipelining_verdict(candidates[i].area->fmax_mhz, deeper[k].area->fmax_mhz, trial[i].has_value())) {
+        case PipeliningVerdict::Keep:
+          candidates[i] = deeper[k];
+          trial[i].reset();
+          break;
+        case PipeliningVerdict::Trial:
+          trial[i] = deeper[k];
+          break;
+        case PipeliningVerdict::Stop:
+          spent[i] = true;
+          trial[i].reset();
+          break;
+      }
     }
   }
   // Ranked: designs that meet every target with an area, by area then
@@ -417,7 +442,8 @@ int run_choose_command(const ChooseOptions& options) {
     nlohmann::json json;
     json["target"] = {{"max_error", options.max_error}, {"metric", options.metric},
                       {"statistic", options.statistic}, {"max_slowdown", options.max_slowdown},
-                      {"min_rate", options.min_rate}, {"clock_mhz", options.clock_mhz}};
+                      {"min_rate", options.min_rate}, {"clock_mhz", options.clock_mhz},
+                      {"pipeline_steps", options.pipeline_steps}};
     json["scenes"] = nlohmann::json::array();
     for (const PreparedScene& s : scenes)
       json["scenes"].push_back({{"name", s.scene.name}, {"triangles", s.scene.triangles.size()},

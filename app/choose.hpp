@@ -28,6 +28,7 @@ struct ChooseOptions {
   double max_slowdown = 1.10;  // cycles of a banded table over those of an unbanded one
   double min_rate = 0.9;       // px/clk every scene must reach (0: no rate target; docs/choose.md)
   double clock_mhz = 0;        // the clock f_max must reach (0: no clock target)
+  unsigned pipeline_steps = 3; // pipelining steps a design below the clock may take (0: none)
   std::string json_path;
   bool verify = true;          // regress the winner on the RTL
   size_t verify_random = 500;
@@ -49,6 +50,12 @@ CLI::App* add_choose_command(CLI::App& app, ChooseOptions& options);
 // paths into the scanline table.
 std::optional<Widths> deeper_pipeline(const Design& design, const Widths& widths, const std::string& block,
                                       const std::vector<std::string>& settings, const std::string& path_end = "");
+// What choose does with a pipelining step, from the f_max of the widths it
+// keeps and of the step's: kept if it raised f_max; else, the first time,
+// kept on trial (the next step is taken on top of it, for the block that then
+// sets the clock), and the search ends the second.
+enum class PipeliningVerdict { Keep, Trial, Stop };
+PipeliningVerdict pipelining_verdict(double kept_fmax_mhz, double stepped_fmax_mhz, bool on_trial);
 int run_choose_command(const ChooseOptions& options);
 
 }  // namespace cdsim

@@ -30,21 +30,32 @@ done
 "$cdsim" choose "$scene" --design affine,divide "${args[@]}" --metric footprint --max-error 100 \
   --verify-random 50 --json "$work/choose.json" > "$work/choose.txt"
 # Two scenes of different viewports: the winner's RTL check runs both in one
-# stream (a second SystemC bench in one process cannot be elaborated).
+# stream (a second SystemC bench in one process cannot be elaborated). With
+# the winner's widths all set: its setup engine and table stay, and the second
+# scene (one triangle of constant depth) needs no bit more, so sizing ends on
+# the same widths and their synthesis is the cached one (no rate target: one
+# triangle of about 1,000 pixels with its setup on one multiplier is below 0.9 px/clk).
 winner=$(/usr/bin/python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["ranking"][0]["design"])' \
   "$work/choose.json")
-"$cdsim" choose "$scene" "$(dirname "$0")/data/good.tri" --design "$winner" "${args[@]}" --metric footprint \
-  --max-error 100 --verify-random 20 --json "$work/choose2.json" > "$work/choose2.txt"
+mapfile -t winner_widths < <(/usr/bin/python3 -c 'import json, sys
+for k, v in json.load(open(sys.argv[1]))["ranking"][0]["widths"].items(): print(f"--set\n{k}={v}")' "$work/choose.json")
+syntheses() { find -L "$work/cache/cdsim/area" -name result.json | wc -l; }
+before=$(syntheses)
+"$cdsim" choose "$scene" "$(dirname "$0")/data/good.tri" --design "$winner" "${winner_widths[@]}" --metric footprint \
+  --max-error 100 --min-rate 0 --verify-random 20 --json "$work/choose2.json" > "$work/choose2.txt"
+echo "$before $(syntheses)" > "$work/choose2_syntheses.txt"
 # The rate and clock targets. No design reaches 5 px/clk: both are refused,
 # and neither is synthesised (an empty cache stays empty). A clock between the
-# two designs' f_max refuses the slower one (its synthesis is cached).
+# two designs' f_max refuses the slower one (its synthesis is cached), with
+# --pipeline-steps 0: no step of pipelining, each a synthesis more (the long
+# tests rtl_correction_timing and rtl_setup_register_timing take them).
 "$cdsim" choose "$scene" --design affine,divide "${args[@]}" --metric footprint --max-error 100 --min-rate 5 \
   --no-verify --area-cache "$work/empty_cache" --json "$work/choose_rate.json" > "$work/choose_rate.txt"
 clock=$(/usr/bin/python3 -c 'import json, sys; r = json.load(open(sys.argv[1]))["ranking"]
 print(round(sum(x["fmax_mhz"] for x in r) / len(r), 2))' "$work/choose.json")
 "$cdsim" choose "$scene" --design affine,divide "${args[@]}" --metric footprint --max-error 100 \
-  --clock-mhz "$clock" --no-verify --area-cache "$work/cache/cdsim/area" --json "$work/choose_clock.json" \
-  > "$work/choose_clock.txt"
+  --clock-mhz "$clock" --pipeline-steps 0 --no-verify --area-cache "$work/cache/cdsim/area" \
+  --json "$work/choose_clock.json" > "$work/choose_clock.txt" 2> "$work/choose_clock.err"
 
 /usr/bin/python3 - "$work" "$cdsim" "$scene" <<'PY'
 import csv, json, subprocess, sys
@@ -142,6 +153,9 @@ expect(len(two["scenes"]) == 2 and two["ranking"][0]["rtl_verified"] is True,
 text = open(f"{work}/choose2.txt").read()
 expect("source: scene" in text and "source: then scene" in text and "0 mismatches" in text,
        "choose on two scenes: one RTL run holds both scenes")
+before, after = open(f"{work}/choose2_syntheses.txt").read().split()
+expect(two["ranking"][0]["widths"] == ranking[0]["widths"] and before == after,
+       "choose on two scenes: an easier scene more leaves the widths, whose synthesis is cached")
 
 import pathlib
 rate = json.load(open(f"{work}/choose_rate.json"))
@@ -160,6 +174,8 @@ expect("too slow:" in text and "no design with RTL meets the targets" in text,
 
 clocked = json.load(open(f"{work}/choose_clock.json"))
 target = clocked["target"]["clock_mhz"]
+expect(clocked["target"]["pipeline_steps"] == 0 and "synthesised again" not in open(f"{work}/choose_clock.err").read(),
+       "choose --pipeline-steps 0: no design synthesised again")
 by_name = {r["design"]: r for r in clocked["ranking"]}
 fast = max(ranking, key=lambda r: r["fmax_mhz"])["design"]
 slow = min(ranking, key=lambda r: r["fmax_mhz"])["design"]

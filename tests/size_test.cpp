@@ -286,5 +286,16 @@ TEST(ChoosePipelining, OneStepOfTheBlockThatSetsTheClock) {
   EXPECT_FALSE(deeper_pipeline(affine, one_bit, "affine setup", {}).has_value());
 }
 
+// A step that raises f_max is kept, whether or not one is on trial; the first
+// that does not (equal or lower) goes on trial, and a second ends the search.
+TEST(ChoosePipelining, AStepThatDoesNotRaiseTheClockGetsOneMoreOnTop) {
+  EXPECT_EQ(pipelining_verdict(43.9, 50.8, false), PipeliningVerdict::Keep);
+  EXPECT_EQ(pipelining_verdict(43.9, 50.8, true), PipeliningVerdict::Keep);
+  EXPECT_EQ(pipelining_verdict(50.8, 50.0, false), PipeliningVerdict::Trial);
+  EXPECT_EQ(pipelining_verdict(50.8, 50.8, false), PipeliningVerdict::Trial);
+  EXPECT_EQ(pipelining_verdict(50.8, 50.0, true), PipeliningVerdict::Stop);
+  EXPECT_EQ(pipelining_verdict(50.8, 50.8, true), PipeliningVerdict::Stop);
+}
+
 }  // namespace
 }  // namespace cdsim
