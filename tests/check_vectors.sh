@@ -1,21 +1,23 @@
 #!/usr/bin/env bash
 # cdsim vectors, replayed by the standalone SystemVerilog bench
 # (tests/vectors/cd_scan_vectors_tb.sv, verilator --binary, no SystemC):
-#  1. writes vectors of the hard cases with every design at narrow widths;
+#  1. writes vectors of SOURCE (cdsim vectors' --scene or --random arguments)
+#     with every design at narrow widths;
 #  2. builds the bench and replays them, without and with back-pressure;
 #  3. corrupts one word of each expected file in a copy (a fragment's u, a
 #     table write's T.v, a setup's box, a record's cycles) and of the stimulus,
 #     and requires the bench to fail, naming the triangle, block and field.
-# Usage: check_vectors.sh CDSIM WORKDIR TESTBENCH RTL_SOURCE...
+# Usage: check_vectors.sh CDSIM WORKDIR "SOURCE" TESTBENCH RTL_SOURCE...
 set -euo pipefail
-cdsim=$1 work=$2 bench=$3
-shift 3
+cdsim=$1 work=$2 source=$3 bench=$4
+shift 4
 rtl_sources=("$@")
 rtl_dir=$(dirname "${rtl_sources[0]}")
 rm -rf "$work" && mkdir -p "$work"
 vec=$work/vectors
 
-"$cdsim" vectors --widths narrow --scene hard:all --design mix --out "$vec"
+# shellcheck disable=SC2086  # SOURCE is words: --scene NAME, or --random N --seed S
+"$cdsim" vectors --widths narrow $source --design mix --out "$vec"
 for f in triangles.hex setups.hex table_writes.hex fragments.hex records.hex vectors.svh cd_widths.svh manifest.json; do
   [[ -s $vec/$f ]] || { echo "FAIL: $vec/$f is missing or empty"; exit 1; }
 done
