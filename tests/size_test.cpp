@@ -214,7 +214,8 @@ TEST(DesignTable, EverySizedWidthMovesTheDesignsResults) {
 
 // choose's pipelining steps (docs/choose.md): the correction adder's
 // registers for a table design whose clock the adder or the control sets (2
-// with persp, 1 without), twice the reciprocal's stages for the reciprocal,
+// with persp, 1 without), twice the reciprocal's stages for the reciprocal (up
+// to one quotient bit a stage),
 // half the divider bits a cycle for the affine setup, for the setup engine
 // the products' register or, on a path into a divider, half its bits a
 // cycle, the fill's products' register for the paths into the table,
@@ -238,6 +239,15 @@ TEST(ChoosePipelining, OneStepOfTheBlockThatSetsTheClock) {
   deep.recip_latency = 64;
   EXPECT_FALSE(deeper_pipeline(divide, deep, "reciprocal", {}).has_value());
   EXPECT_FALSE(deeper_pipeline(divide, w, "reciprocal", {"recip_latency=4"}).has_value());
+  // Never past one quotient bit a stage (recip_bits + 1 stages): more would
+  // be registers that cut no path.
+  Widths short_recip = w;
+  short_recip.recip_bits = 8;
+  short_recip.recip_latency = 8;
+  ASSERT_TRUE(deeper_pipeline(divide, short_recip, "reciprocal", {}).has_value());
+  EXPECT_EQ(deeper_pipeline(divide, short_recip, "reciprocal", {})->recip_latency, 9);
+  short_recip.recip_latency = 9;
+  EXPECT_FALSE(deeper_pipeline(divide, short_recip, "reciprocal", {}).has_value());
   // The setup engine: a path into a stage's multiply-add takes the
   // products' register (one multiplier a product only); a path into one of
   // its serial dividers (an instance u_*_divider) half the bits a cycle.
