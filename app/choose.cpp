@@ -155,11 +155,12 @@ std::optional<Widths> deeper_pipeline(const Design& design, const Widths& w, con
     next.fill_product_register = 1;
   } else if (block == "reciprocal") {
     // Each stage resolves ceil((recip_bits + 1) / recip_latency) quotient
-    // bits (rtl/reciprocal.sv): at recip_bits + 1 stages one bit each, and
-    // more would be registers that cut nothing.
+    // bits (rtl/reciprocal.sv): at recip_bits + 1 stages (at most 33, within
+    // recip_latency's 64) one bit each, and more would be registers that cut
+    // nothing.
     const int one_bit_a_stage = w.recip_bits + 1;
-    if (w.recip_latency >= std::min(64, one_bit_a_stage) || user_sets("recip_latency")) return std::nullopt;
-    next.recip_latency = std::min({64, one_bit_a_stage, 2 * w.recip_latency});
+    if (w.recip_latency >= one_bit_a_stage || user_sets("recip_latency")) return std::nullopt;
+    next.recip_latency = std::min(one_bit_a_stage, 2 * w.recip_latency);
   } else if (block == "setup engine" && path_end.find("u_multipliers/") != std::string::npos) {
     // Into the multipliers' own registers (shared multipliers' accumulators,
     // or the sums with setup_product_register): a multiply itself, which no
