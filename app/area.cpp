@@ -29,6 +29,7 @@
 
 #include "build_info.hpp"
 #include "cache_files.hpp"
+#include "area_recovery.hpp"
 #include "netlist_writer.hpp"
 #include "child_process.hpp"
 #include "common.hpp"
@@ -46,6 +47,8 @@ namespace {
 
 // Bumped whenever the flow below changes, so that cached results are redone.
 constexpr const char* kFlowVersion = "area-flow-7";
+// And of the recovering flow on top of it (`--flow recover`).
+constexpr const char* kRecoverFlowVersion = "recover-1";
 
 // Yosys writes "=== cd_scan_unit ===" but "Chip area for module '\cd_scan_unit'".
 std::string strip_escape(const std::string& name) {
@@ -269,6 +272,9 @@ UnitConfig prepare_unit(const Design& design, const Widths& widths, const AreaOp
   c.header = c.top == kAdaptiveUnitTop ? rtl_header(adaptive_leaf_widths(widths), "area, adaptive leaf unit")
                                       : rtl_header(widths, "area");
   uint64_t hash = fnv1a(kFlowVersion);
+  if (options.flow == "recover") hash = fnv1a(kRecoverFlowVersion, hash);
+  else if (options.flow != "delay")
+    throw std::invalid_argument(fmt::format("--flow {}: not a flow (delay, recover)", options.flow));
   hash = fnv1a(c.header, hash);
   hash = fnv1a(fmt::format("{} {} {}", c.top, parameters, options.liberty), hash);
   if (options.clock_mhz > 0) hash = fnv1a(fmt::format("clock {}", options.clock_mhz), hash);
@@ -580,6 +586,15 @@ AreaReport area_report(const Design& design, const Widths& widths, const UnitCon
       if (per_block.contains(block.name)) block.critical_path_ns = per_block.at(block.name).get<double>();
     if (per_block.contains("scanline table")) report.table_path_ns = per_block.at("scanline table").get<double>();
   }
+  report.flow = synthesised.value("flow", "delay");
+  if (synthesised.contains("recovery")) {
+    const nlohmann::json& r = synthesised.at("recovery");
+    report.recovery_target_ns = r.at("target_ns").get<double>();
+    report.area_mapped_modules = r.at("area_mapped").size();
+    report.modules = r.at("modules").get<size_t>();
+    report.delay_mapped_logic_um2 = r.at("delay_mapped_logic_um2").get<double>();
+    report.area_mapped_logic_um2 = r.at("area_mapped_logic_um2").get<double>();
+  }
   report.flop_table_lines_synthesised = synthesised.at("flop_table_lines").get<int64_t>();
   if (report.flop_table_lines_synthesised > 0)
     report.flop_table_area_um2 = synthesised.at("flop_table_area_um2").get<double>() *
@@ -588,10 +603,6 @@ AreaReport area_report(const Design& design, const Widths& widths, const UnitCon
   report.total_area_um2 = report.logic_area_um2 + report.sram_area_um2;
   return report;
 }
-
-}  // namespace area_detail
-
-namespace {
 
 // ABC's fast mapping (Yosys's `abc -fast` script: strash; dretime; map), then
 // what a designer's flow adds before timing: buffers on the nets of more
@@ -607,6 +618,21 @@ void write_abc_script(const fs::path& work, double clock_mhz) {
                                 (work / "abc.constr").string(), fmt::arg("t", target),
                                 fmt::arg("up", clock_mhz > 0 ? "upsize" + target + "\ntopo\n" : "")));
 }
+
+// The area corner of the recovering flow (`--flow recover`, docs/area.md):
+// the AIG compressed (dc2), mapped over structural choices (&dch) by ABC's
+// area-oriented mapper (&nf), then buffered and sized as abc.script is. On the
+// column walker at default widths it maps 264,121 um^2 where abc.script maps
+// 378,730, with a 9.06 ns path against 4.29 (docs/area.md).
+void write_area_abc_script(const fs::path& work) {
+  write_file_atomic(work / "abc_area.script",
+                    fmt::format("read_constr -v {}\nstrash\ndc2\n&get -n\n&dch -f\n&nf\n&put\ntopo\nbuffer -N 16\n"
+                                "topo\ndnsize\n", (work / "abc.constr").string()));
+}
+
+}  // namespace area_detail
+
+namespace {
 
 // The scanline table as OpenSTA sees it (osu018 has no SRAM macro, so no
 // timing model): one flip-flop per port bit, read data leaving a Q at the
@@ -658,26 +684,37 @@ AreaReport synthesise_area(const Design& design, const Widths& widths, const Are
   if (!cached) build_result(config, "result.json", [&](const fs::path& work) {
     const std::string& L = options.liberty;
     write_abc_script(work, options.clock_mhz);
+    const bool recover = options.flow == "recover";
+    if (recover) write_area_abc_script(work);
+    // After the flip-flops are mapped: the logic onto the liberty's gates by
+    // `script`, the statistics, and the netlist OpenSTA times: no undriven
+    // bit, the table's timing model in place of the black box, one-bit
+    // ports; as JSON, which app/netlist_writer.cpp writes as Verilog (Yosys
+    // 0.23's write_verilog took 56 s of a 140 s synthesis, write_json 1 s).
+    const auto map_logic = [&](const std::string& script, const std::string& json) {
+      return fmt::format(
+          "abc -liberty {L} -script {W}/{script}\nopt_clean\n"
+          "select -assert-none t:$* t:$paramod* %d\n"
+          "stat -liberty {L}\n"
+          "setundef -zero\n{table}splitnets -ports\nopt_clean -purge\n"
+          "write_json {W}/{json}\n", fmt::arg("L", options.liberty), fmt::arg("W", work.string()),
+          fmt::arg("script", script), fmt::arg("json", json),
+          fmt::arg("table", config.has_table ? fmt::format(
+              "setparam -unset Depth -unset WordBits t:scanline_table\n"
+              "read_verilog -overwrite {W}/table_timing.v\n"
+              "setattr -mod -set keep_hierarchy 1 *\nsetattr -mod -unset keep_hierarchy scanline_table\n"
+              "flatten\nsetattr -mod -unset keep_hierarchy *\n", fmt::arg("W", work.string())) : ""));
+    };
     write_file_atomic(work / "unit.ys", config.unit_front(work) + fmt::format(
         "proc\n"
         "select -assert-none t:$dlatch t:$adlatch t:$dlatchsr t:$sr\n"
         "opt -fast\n"
         "select -assert-none t:$div t:$mod t:$divfloor t:$modfloor\n"
         "wreduce\ntee -q -o {W}/multiplies.il dump t:$mul\nalumacc\nopt -fast\nmemory -nomap\ntechmap\n"
-        "dfflibmap -liberty {L}\nabc -liberty {L} -script {W}/abc.script\nopt_clean\n"
-        "select -assert-none t:$* t:$paramod* %d\n"
-        "stat -liberty {L}\n"
-        // The netlist OpenSTA times: no undriven bit, the table's timing
-        // model in place of the black box, one-bit ports; as JSON, which
-        // app/netlist_writer.cpp writes as Verilog (Yosys 0.23's
-        // write_verilog took 56 s of a 140 s synthesis, write_json 1 s).
-        "setundef -zero\n{table}splitnets -ports\nopt_clean -purge\n"
-        "write_json {W}/unit.json\n", fmt::arg("L", L), fmt::arg("W", work.string()),
-        fmt::arg("table", config.has_table ? fmt::format(
-            "setparam -unset Depth -unset WordBits t:scanline_table\n"
-            "read_verilog -overwrite {W}/table_timing.v\n"
-            "setattr -mod -set keep_hierarchy 1 *\nsetattr -mod -unset keep_hierarchy scanline_table\n"
-            "flatten\nsetattr -mod -unset keep_hierarchy *\n", fmt::arg("W", work.string())) : "")));
+        "dfflibmap -liberty {L}\n", fmt::arg("L", L), fmt::arg("W", work.string())) +
+        (recover ? "design -save flops_mapped\n" + map_logic("abc.script", "unit_delay.json") +
+                   "design -load flops_mapped\n" + map_logic("abc_area.script", "unit.json")
+                 : map_logic("abc.script", "unit.json")));
     if (config.has_table) write_file_atomic(work / "table_timing.v", table_timing_model(config));
     write_file_atomic(work / "table.ys", config.table_front(work) + fmt::format(
         "proc\nopt -fast\nmemory\nopt -fast\ntechmap\n"
@@ -694,22 +731,61 @@ AreaReport synthesise_area(const Design& design, const Widths& widths, const Are
     run_yosys(runs);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const auto unit = parse_stat(read_text_file(work / "unit.log"));
-    write_verilog_from_yosys_json(work / "unit.json", work / "unit.v");
+    const std::string log = read_text_file(work / "unit.log");
+    const auto multiplies = parse_multiplies(read_text_file(work / "multiplies.il"));
+    const std::string log_path = (work / "unit.log").string();
+    const auto logic_of = [&](const std::map<std::string, ModuleStat>& stat) {
+      double sum = 0;
+      for (const auto& b : block_areas(stat, config, log_path, multiplies)) sum += b.at("area_um2").get<double>();
+      return sum;
+    };
+    std::map<std::string, ModuleStat> unit = parse_stat(log);  // the last mapping's: the area mapping's
+    StaReport sta;
+    nlohmann::json recovery;
     std::error_code ec;
-    fs::remove(work / "unit.json", ec);  // tens of megabytes
-    const StaReport sta = time_netlist({work / "unit.v"}, config.top, L, "clk_i", work);
+    if (recover) {
+      const auto modules_of = [&](const fs::path& json) {
+        const ModuleTexts texts = verilog_modules_from_yosys_json(nlohmann::json::parse(read_text_file(json)));
+        fs::remove(json, ec);  // tens of megabytes
+        return texts;
+      };
+      const ModuleTexts delay_texts = modules_of(work / "unit_delay.json");
+      const ModuleTexts area_texts = modules_of(work / "unit.json");
+      const Recovery r = recover_area(delay_texts, area_texts, options.clock_mhz > 0 ? 1000 / options.clock_mhz : 0,
+                                      config.top, L, "clk_i", work, [&](const std::string& line) {
+                                        if (!options.quiet) std::cerr << line << "\n";
+                                      });
+      const std::map<std::string, ModuleStat> delay_unit = parse_stat(log.substr(0, log.rfind("Printing statistics.")));
+      const std::map<std::string, ModuleStat> area_unit = unit;
+      for (auto& [name, stat] : unit) {
+        if (r.area_modules.count(name)) continue;
+        const auto it = delay_unit.find(name);
+        if (it == delay_unit.end())
+          throw std::runtime_error(fmt::format("area: module {} has no delay-mapped statistics in {}", name, log_path));
+        stat = it->second;
+      }
+      recovery = {{"target_ns", r.target_ns}, {"rounds", r.rounds}, {"fell_back", r.fell_back},
+                  {"modules", r.modules}, {"area_mapped", r.area_modules},
+                  {"delay_mapped_logic_um2", logic_of(delay_unit)}, {"area_mapped_logic_um2", logic_of(area_unit)},
+                  {"delay_mapped_critical_path_ns", r.delay.endpoints.front().period_ns}};
+      sta = r.chosen;
+    } else {
+      write_verilog_from_yosys_json(work / "unit.json", work / "unit.v");
+      fs::remove(work / "unit.json", ec);  // tens of megabytes
+      sta = time_netlist({work / "unit.v"}, config.top, L, "clk_i", work);
+    }
     write_file_atomic(work / "timing.rpt", sta.worst_path);
     fs::remove(work / "unit.v", ec);  // tens of megabytes; the script writes it again
-    const nlohmann::json result = {
+    nlohmann::json result = {
         {"seconds", seconds},
-        {"blocks", block_areas(unit, config, (work / "unit.log").string(),
-                               parse_multiplies(read_text_file(work / "multiplies.il")))},
+        {"blocks", block_areas(unit, config, log_path, multiplies)},
         {"flop_table_lines", config.flop_lines},
         {"flop_table_area_um2",
          config.has_table ? table_area(parse_stat(read_text_file(work / "table.log"))) : 0.0},
         {"timing", block_timing(sta, (work / "unit.v").string())},
+        {"flow", options.flow},
     };
+    if (recover) result["recovery"] = recovery;
     if (const std::string wrong = check_synthesis(result); !wrong.empty())
       throw std::runtime_error(fmt::format("area: the synthesis makes no sense ({}); log {}", wrong,
                                            (work / "unit.log").string()));
@@ -756,6 +832,13 @@ nlohmann::json area_json(const AreaReport& r, const AreaOptions& options) {
                                                    : nlohmann::json{{"from", r.critical_path_from},
                                                                     {"to", r.critical_path_to},
                                                                     {"report", r.timing_report_path}}},
+          {"flow", r.flow},
+          {"recovery", r.flow != "recover" ? nlohmann::json(nullptr)
+                                           : nlohmann::json{{"target_ns", r.recovery_target_ns},
+                                                            {"area_mapped_modules", r.area_mapped_modules},
+                                                            {"modules", r.modules},
+                                                            {"delay_mapped_logic_um2", r.delay_mapped_logic_um2},
+                                                            {"area_mapped_logic_um2", r.area_mapped_logic_um2}}},
           {"clock_target_mhz", options.clock_mhz > 0 ? nlohmann::json(options.clock_mhz) : nlohmann::json(nullptr)},
           {"synthesis_seconds", r.synthesis_seconds},
           {"estimated", r.estimated},
@@ -872,6 +955,12 @@ CLI::App* add_area_command(CLI::App& app, AreaOptions& options) {
                   "map for this clock (ABC's delay target: faster gates where the period needs them, more area) "
                   "and say whether the timing meets it")
       ->check(CLI::Range(1.0, 2000.0));
+  cmd->add_option("--flow", options.flow,
+                  "delay: ABC at its delay corner everywhere; recover: each module also mapped for area, "
+                  "and kept so where no path over the clock (--clock-mhz, else the delay flow's f_max) "
+                  "runs through it (docs/area.md)")
+      ->check(CLI::IsMember({"delay", "recover"}))
+      ->capture_default_str();
   cmd->add_flag("--model", options.estimate,
                 "estimate by the component area model (an elaboration of about 5 s, no mapping) "
                 "instead of synthesising; cdsim area-model calibrates it");
@@ -925,6 +1014,11 @@ int run_area_command(const AreaOptions& options) {
                "no wires; docs/area.md)\n  from {}\n  to   {}\n  report {}\n",
                r.critical_path_ns, critical_block(r), r.fmax_mhz, r.critical_path_from, r.critical_path_to,
                r.timing_report_path);
+    if (r.flow == "recover")
+      fmt::print("  flow recover: {} of {} modules area-mapped, every path held to {:.2f} ns; logic {:.0f} um^2 "
+                 "against {:.0f} all delay-mapped ({:+.1f}%) and {:.0f} all area-mapped\n",
+                 r.area_mapped_modules, r.modules, r.recovery_target_ns, r.logic_area_um2, r.delay_mapped_logic_um2,
+                 100 * (r.logic_area_um2 / r.delay_mapped_logic_um2 - 1), r.area_mapped_logic_um2);
     if (options.clock_mhz > 0)
       fmt::print("  mapped for {} MHz ({:.2f} ns): {} (slack {:+.2f} ns)\n", options.clock_mhz, 1000 / options.clock_mhz,
                  r.fmax_mhz >= options.clock_mhz ? "met" : "NOT met", 1000 / options.clock_mhz - r.critical_path_ns);

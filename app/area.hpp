@@ -54,6 +54,14 @@ struct AreaReport {
   std::string critical_path_from, critical_path_to;  // its start and end points
   std::string timing_report_path;                    // OpenSTA's report of that path
   double table_path_ns = -1;  // the worst path into the scanline table (its timing model); -1: none
+  // The flow (AreaOptions::flow) and, for "recover", what it chose: the
+  // period every path was held to, how many modules kept the area mapping,
+  // and the logic area with every module delay-mapped (the delay flow's) and
+  // with every module area-mapped.
+  std::string flow = "delay";
+  double recovery_target_ns = -1;
+  size_t area_mapped_modules = 0, modules = 0;
+  double delay_mapped_logic_um2 = -1, area_mapped_logic_um2 = -1;
 };
 
 struct AreaOptions {
@@ -71,6 +79,10 @@ struct AreaOptions {
   bool estimate = false;         // the component area model instead of synthesis (area_model.hpp)
   double clock_mhz = 0;          // > 0: map for this clock (ABC's delay target; docs/area.md, "Timing")
   std::string model_path;        // its calibration (default: rtl/area_model.json)
+  // "delay": every module mapped at ABC's delay corner (docs/area.md, "The
+  // flow"); "recover": each module also mapped at its area corner and kept so
+  // where no path over the target runs through it (app/area_recovery.hpp).
+  std::string flow = "delay";
 };
 
 // One configuration to synthesise.

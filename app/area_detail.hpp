@@ -115,6 +115,11 @@ struct YosysRun {
   std::string what;  // "on the unit"
 };
 void run_yosys(const std::vector<YosysRun>& runs);
+// ABC's scripts (and abc.constr) in `work`: abc.script, the delay corner
+// every flow maps with (aiming at `clock_mhz` when > 0), and
+// abc_area.script, the area corner of the recovering flow.
+void write_abc_script(const std::filesystem::path& work, double clock_mhz);
+void write_area_abc_script(const std::filesystem::path& work);
 std::string yosys_error(const std::filesystem::path& log);
 
 }  // namespace cdsim::area_detail

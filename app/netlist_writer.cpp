@@ -113,15 +113,26 @@ void write_module(const std::string& name, const nlohmann::json& module, const n
 
 }  // namespace
 
-std::string verilog_from_yosys_json(const nlohmann::json& netlist) {
-  fmt::memory_buffer out;
-  fmt::format_to(std::back_inserter(out), "// cdsim: structural Verilog from Yosys's write_json (app/netlist_writer.cpp)\n\n");
+std::vector<std::pair<std::string, std::string>> verilog_modules_from_yosys_json(const nlohmann::json& netlist) {
+  std::vector<std::pair<std::string, std::string>> modules;
   for (const auto& [name, module] : netlist.at("modules").items()) {
     const nlohmann::json& attributes = module.value("attributes", nlohmann::json::object());
     if (attributes.contains("blackbox")) continue;
+    fmt::memory_buffer out;
     write_module(name, module, netlist.at("modules"), out);
+    modules.emplace_back(name, fmt::to_string(out));
   }
-  return fmt::to_string(out);
+  return modules;
+}
+
+std::string verilog_from_modules(const std::vector<std::pair<std::string, std::string>>& modules) {
+  std::string out = "// cdsim: structural Verilog from Yosys's write_json (app/netlist_writer.cpp)\n\n";
+  for (const auto& [name, text] : modules) out += text;
+  return out;
+}
+
+std::string verilog_from_yosys_json(const nlohmann::json& netlist) {
+  return verilog_from_modules(verilog_modules_from_yosys_json(netlist));
 }
 
 void write_verilog_from_yosys_json(const std::filesystem::path& json_path,

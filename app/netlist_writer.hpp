@@ -9,6 +9,8 @@
 
 #include <filesystem>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -20,6 +22,13 @@ namespace cdsim {
 // std::runtime_error on a netlist it cannot write (a cell type still a Yosys
 // internal cell, a bit of unknown kind).
 std::string verilog_from_yosys_json(const nlohmann::json& netlist);
+
+// The same, module by module (name as Yosys names it, then its Verilog), in
+// the netlist's order; and the file written from such a list. cdsim area's
+// recovering flow (app/area_recovery.hpp) takes each module from one of two
+// mappings of the same netlist.
+std::vector<std::pair<std::string, std::string>> verilog_modules_from_yosys_json(const nlohmann::json& netlist);
+std::string verilog_from_modules(const std::vector<std::pair<std::string, std::string>>& modules);
 
 // Reads `json_path` (write_json's output) and writes `verilog_path`.
 void write_verilog_from_yosys_json(const std::filesystem::path& json_path,

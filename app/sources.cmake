@@ -16,6 +16,7 @@ set(CDSIM_APP_SOURCES
   ${CDSIM_APP_DIR}/area_model.cpp
   ${CDSIM_APP_DIR}/flagged_triangles.cpp
   ${CDSIM_APP_DIR}/sta.cpp
-  ${CDSIM_APP_DIR}/netlist_writer.cpp)
+  ${CDSIM_APP_DIR}/netlist_writer.cpp
+  ${CDSIM_APP_DIR}/area_recovery.cpp)
 set_source_files_properties(${CDSIM_APP_DIR}/render.cpp PROPERTIES
   COMPILE_OPTIONS "-Wno-conversion;-Wno-missing-field-initializers")

@@ -28,6 +28,7 @@ constexpr double kClockPeriodNs = 10.0;
 constexpr const char* kInstance = "cdsim-instance ";
 constexpr const char* kEndpoints = "cdsim-endpoints";
 constexpr const char* kWorst = "cdsim-worst";
+constexpr const char* kOver = "cdsim-over";
 constexpr const char* kEnd = "cdsim-end";
 
 }  // namespace
@@ -36,11 +37,13 @@ StaReport parse_sta_log(const std::string& log, double clock_period_ns) {
   StaReport report;
   std::istringstream in(log);
   std::string line;
-  enum class Section { Head, Endpoints, Worst, Tail } section = Section::Head;
+  enum class Section { Head, Endpoints, Worst, Over, Tail } section = Section::Head;
   // "u_a/_12_/D (DFFPOSX1)    9.8380   17.8720   -8.0340 (VIOLATED)", or (MET)
   static const std::regex endpoint(R"(^(\S+) \(\S+\)\s+(-?[0-9.]+)\s+(-?[0-9.]+)\s+(-?[0-9.]+)( \((VIOLATED|MET)\))?\s*$)");
   static const std::regex start(R"(^Startpoint: (\S+))");
   static const std::regex end(R"(^Endpoint: (\S+))");
+  // A cell's output on a path: "   0.117    1.710 v u_a/_08556_/Y (OAI21X1)"
+  static const std::regex path_pin(R"(^\s+-?[0-9.]+\s+-?[0-9.]+ [\^v] (\S+)/[^/\s]+ \((\S+)\)\s*$)");
   std::smatch m;
   while (std::getline(in, line)) {
     if (line.rfind("Error", 0) == 0) throw std::runtime_error(line);
@@ -58,6 +61,8 @@ StaReport parse_sta_log(const std::string& log, double clock_period_ns) {
       section = Section::Endpoints;
     } else if (line == kWorst) {
       section = Section::Worst;
+    } else if (line == kOver) {
+      section = Section::Over;
     } else if (line == kEnd) {
       section = Section::Tail;
     } else if (section == Section::Endpoints && std::regex_match(line, m, endpoint)) {
@@ -66,6 +71,9 @@ StaReport parse_sta_log(const std::string& log, double clock_period_ns) {
       if (std::regex_search(line, m, start) && report.worst_from.empty()) report.worst_from = m[1];
       if (std::regex_search(line, m, end) && report.worst_to.empty()) report.worst_to = m[1];
       report.worst_path += line + "\n";
+    } else if (section == Section::Over && std::regex_match(line, m, path_pin)) {
+      const std::string type = m[2];
+      if (type.rfind("DFF", 0) != 0 && type.rfind("LATCH", 0) != 0) report.over_path_cells.emplace_back(m[1], type);
     }
   }
   if (section != Section::Tail) throw std::runtime_error("the timing report stops early");
@@ -75,7 +83,7 @@ StaReport parse_sta_log(const std::string& log, double clock_period_ns) {
 }
 
 StaReport time_netlist(const std::vector<fs::path>& netlists, const std::string& top, const std::string& liberty,
-                       const std::string& clock, const fs::path& work) {
+                       const std::string& clock, const fs::path& work, double over_ns, int max_paths) {
   if (netlists.empty()) throw std::invalid_argument("time_netlist: no netlist");
   const fs::path& netlist = netlists.front();
   std::string reads;
@@ -97,10 +105,15 @@ StaReport time_netlist(const std::vector<fs::path>& netlists, const std::string&
       "report_checks -path_delay max -format end -group_count 100000000 -endpoint_count 1 -digits 4\n"
       "puts {worst}\n"
       "report_checks -path_delay max -digits 3 -fields {{fanout cap slew}}\n"
+      "{over}"
       "puts {end}\n",
       fmt::arg("lib", liberty), fmt::arg("reads", reads), fmt::arg("top", top),
       fmt::arg("period", kClockPeriodNs), fmt::arg("clock", clock), fmt::arg("instance", kInstance),
-      fmt::arg("endpoints", kEndpoints), fmt::arg("worst", kWorst), fmt::arg("end", kEnd)));
+      fmt::arg("endpoints", kEndpoints), fmt::arg("worst", kWorst), fmt::arg("end", kEnd),
+      fmt::arg("over", over_ns > 0 ? fmt::format("puts {}\nreport_checks -path_delay max -group_count {} "
+                                                 "-endpoint_count 1 -slack_max {:.4f} -digits 3\n",
+                                                 kOver, max_paths, kClockPeriodNs - over_ns)
+                                   : "")));
   const auto started = std::chrono::steady_clock::now();
   std::error_code ec;
   fs::remove(log, ec);

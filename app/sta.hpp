@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace cdsim {
@@ -24,6 +25,10 @@ struct StaReport {
   std::vector<StaEndpoint> endpoints;  // every flip-flop data pin a path reaches, worst first
   std::string worst_from, worst_to;    // the worst path's start and end points ("" when none)
   std::string worst_path;              // OpenSTA's report of that path
+  // With time_netlist's `over_ns`: the logic cells (flip-flops left out) on
+  // the worst path into each endpoint whose period is over it, as
+  // (hierarchical cell name, cell type): ("u_setup_engine/_5807_", "OAI21X1").
+  std::vector<std::pair<std::string, std::string>> over_path_cells;
   double seconds = 0;
 };
 
@@ -33,9 +38,11 @@ struct StaReport {
 // defines is an error, not a black box. Inputs and outputs carry no delay, so only
 // paths from a flip-flop to a flip-flop are timed. Writes sta.tcl and sta.log
 // into `work`. Throws std::runtime_error naming the log when OpenSTA fails or
-// reports an error.
+// reports an error. With `over_ns` > 0 it also lists the cells on the paths
+// over that period (the `max_paths` worst endpoints' paths at most).
 StaReport time_netlist(const std::vector<std::filesystem::path>& netlists, const std::string& top,
-                       const std::string& liberty, const std::string& clock, const std::filesystem::path& work);
+                       const std::string& liberty, const std::string& clock, const std::filesystem::path& work,
+                       double over_ns = 0, int max_paths = 2000);
 
 // Parses sta.log as time_netlist's script writes it (exposed for tests).
 StaReport parse_sta_log(const std::string& log, double clock_period_ns);

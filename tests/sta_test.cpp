@@ -22,6 +22,7 @@
 #include <tuple>
 
 #include "area_detail.hpp"
+#include "area_recovery.hpp"
 #include "cache_files.hpp"
 #include "netlist_writer.hpp"
 #include "sta.hpp"
@@ -158,6 +159,102 @@ TEST_F(Sta, TheJsonNetlistTimesAsYosysVerilog) {
   for (size_t i = 0; i < ours.endpoints.size(); ++i)
     EXPECT_DOUBLE_EQ(ours.endpoints[i].period_ns, yosys.endpoints[i].period_ns) << "endpoint " << i;
   EXPECT_GT(yosys.endpoints.front().period_ns, 0.5) << "an 8-bit carry chain between two flip-flops";
+}
+
+// The recovering flow (app/area_recovery.cpp) on a design of two registered
+// adders in modules of their own, mapped by the flow's two ABC scripts: a wide
+// one, whose path sets the clock, and a narrow one with slack. The oracle is
+// OpenSTA on each mapping alone: the area mapping must slow the wide adder
+// (else there is nothing to recover), the chosen netlist must keep the delay
+// mapping's clock, and the narrow adder, which has the slack, must take the
+// area mapping.
+class Recovery : public Sta {
+ protected:
+  // `design`.v mapped both ways: delay.json and area.json.
+  void map_both(const std::string& verilog) {
+    cdsim::write_file_atomic(dir_ / "design.v", verilog);
+    cdsim::area_detail::write_abc_script(dir_, 0);
+    cdsim::area_detail::write_area_abc_script(dir_);
+    const auto tail = [&](const std::string& script, const std::string& json) {
+      return "abc -liberty " + std::string(kLiberty) + " -script " + (dir_ / script).string() +
+             "; opt_clean; setundef -zero; splitnets -ports; opt_clean -purge; write_json " +
+             (dir_ / json).string() + "; ";
+    };
+    const std::string script = "read_verilog " + (dir_ / "design.v").string() +
+                               "; hierarchy -top top; proc; opt -fast; wreduce; alumacc; opt -fast; techmap; "
+                               "dfflibmap -liberty " + kLiberty + "; design -save flops; " +
+                               tail("abc.script", "delay.json") + "design -load flops; " +
+                               tail("abc_area.script", "area.json");
+    ASSERT_EQ(std::system(("yosys -q -p '" + script + "' > " + (dir_ / "yosys.log").string() + " 2>&1").c_str()), 0)
+        << "see " << (dir_ / "yosys.log").string();
+    delay_ = cdsim::verilog_modules_from_yosys_json(nlohmann::json::parse(cdsim::read_text_file(dir_ / "delay.json")));
+    area_ = cdsim::verilog_modules_from_yosys_json(nlohmann::json::parse(cdsim::read_text_file(dir_ / "area.json")));
+  }
+  // One mapping alone, timed.
+  cdsim::StaReport time_alone(const cdsim::ModuleTexts& modules, const std::string& name) {
+    fs::create_directories(dir_ / name);
+    cdsim::write_file_atomic(dir_ / name / "unit.v", cdsim::verilog_from_modules(modules));
+    return cdsim::time_netlist({dir_ / name / "unit.v"}, "top", kLiberty, "clk_i", dir_ / name);
+  }
+  static std::string adder(const std::string& name, int bits) {
+    const std::string w = std::to_string(bits - 1);
+    return "module " + name + "(input clk_i, input [" + w + ":0] a_i, input [" + w + ":0] b_i, output reg [" +
+           std::to_string(bits) + ":0] s_o);\n  reg [" + w + ":0] a, b;\n"
+           "  always @(posedge clk_i) begin a <= a_i; b <= b_i; s_o <= a + b; end\nendmodule\n";
+  }
+  static std::string two_adders() {
+    return adder("wide", 48) + adder("narrow", 4) +
+           "module top(input clk_i, input [47:0] a_i, input [47:0] b_i, output [48:0] w_o, output [4:0] n_o);\n"
+           "  wide u_wide (.clk_i(clk_i), .a_i(a_i), .b_i(b_i), .s_o(w_o));\n"
+           "  narrow u_narrow (.clk_i(clk_i), .a_i(a_i[3:0]), .b_i(b_i[3:0]), .s_o(n_o));\nendmodule\n";
+  }
+  cdsim::ModuleTexts delay_, area_;
+};
+
+TEST_F(Recovery, TheModuleWithSlackTakesTheAreaMappingAndTheClockStays) {
+  map_both(two_adders());
+  const double delay_ns = time_alone(delay_, "delay").endpoints.at(0).period_ns;
+  const cdsim::StaReport area_alone = time_alone(area_, "area");
+  ASSERT_GT(area_alone.endpoints.at(0).period_ns, delay_ns + 0.1)
+      << "the area mapping does not slow the wide adder: nothing for the test to recover";
+  EXPECT_EQ(cdsim::area_detail::block_of_pin(area_alone.instance_module, area_alone.endpoints.at(0).pin), "wide");
+  fs::create_directories(dir_ / "mixed");
+  const cdsim::Recovery r = cdsim::recover_area(delay_, area_, 0, "top", kLiberty, "clk_i", dir_ / "mixed");
+  EXPECT_DOUBLE_EQ(r.target_ns, delay_ns);
+  EXPECT_EQ(r.modules, 3u);
+  EXPECT_FALSE(r.fell_back);
+  EXPECT_EQ(r.area_modules.count("narrow"), 1u);
+  EXPECT_EQ(r.area_modules.count("wide"), 0u);
+  EXPECT_LE(r.chosen.endpoints.at(0).period_ns, delay_ns + 0.001);
+  EXPECT_GE(r.rounds, 2) << "the first round, all area-mapped, is over the target";
+  // The chosen netlist as written: the wide adder's text is the delay mapping's.
+  const std::string chosen = cdsim::read_text_file(dir_ / "mixed" / "unit.v");
+  for (const auto& [name, text] : delay_) {
+    if (name == "wide") {
+      EXPECT_NE(chosen.find(text), std::string::npos);
+    }
+  }
+  for (const auto& [name, text] : area_) {
+    if (name == "narrow") {
+      EXPECT_NE(chosen.find(text), std::string::npos);
+    }
+  }
+}
+
+TEST_F(Recovery, ATargetNoMappingMeetsTakesTheDelayMappingEverywhere) {
+  map_both(two_adders());
+  fs::create_directories(dir_ / "mixed");
+  const cdsim::Recovery r = cdsim::recover_area(delay_, area_, 0.05, "top", kLiberty, "clk_i", dir_ / "mixed");
+  EXPECT_EQ(r.area_modules.count("wide") + r.area_modules.count("narrow"), 0u)
+      << "every cell is on a path over 0.05 ns";
+  EXPECT_DOUBLE_EQ(r.chosen.endpoints.at(0).period_ns, r.delay.endpoints.at(0).period_ns);
+}
+
+TEST_F(Recovery, TwoMappingsOfDifferentModulesAreRefused) {
+  map_both(two_adders());
+  cdsim::ModuleTexts fewer = area_;
+  fewer.pop_back();
+  EXPECT_THROW(cdsim::recover_area(delay_, fewer, 0, "top", kLiberty, "clk_i", dir_), std::runtime_error);
 }
 
 }  // namespace

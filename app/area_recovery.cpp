@@ -1,0 +1,99 @@
+#include "area_recovery.hpp"
+
+#include <fmt/format.h>
+
+#include <map>
+#include <stdexcept>
+
+#include "cache_files.hpp"
+#include "netlist_writer.hpp"
+
+namespace cdsim {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// OpenSTA's endpoint periods are read to 0.1 ps; a path this much over the
+// target is over it.
+constexpr double kToleranceNs = 0.001;
+// A round that moves modules to the delay mapping removes the paths through
+// them; each round moves at least one, so this bounds a search that would
+// otherwise end anyway, and keeps a pathological netlist from timing for hours.
+constexpr int kMaxRounds = 12;
+
+double critical_ns(const StaReport& sta, const fs::path& netlist) {
+  if (sta.endpoints.empty())
+    throw std::runtime_error(fmt::format("area: OpenSTA timed no flip-flop in {}", netlist.string()));
+  return sta.endpoints.front().period_ns;
+}
+
+}  // namespace
+
+std::string module_of_cell(const StaReport& sta, const std::string& cell, const std::string& top) {
+  const size_t slash = cell.rfind('/');
+  if (slash == std::string::npos) return top;
+  const auto it = sta.instance_module.find(cell.substr(0, slash));
+  if (it == sta.instance_module.end())
+    throw std::runtime_error(fmt::format("area: OpenSTA names cell {}, whose instance it did not list", cell));
+  return it->second;
+}
+
+Recovery recover_area(const ModuleTexts& delay, const ModuleTexts& area, double target_ns, const std::string& top,
+                      const std::string& liberty, const std::string& clock, const fs::path& work,
+                      const std::function<void(const std::string&)>& progress) {
+  std::map<std::string, const std::string*> area_text;
+  for (const auto& [name, text] : area) area_text[name] = &text;
+  std::set<std::string> delay_names;
+  for (const auto& [name, text] : delay) delay_names.insert(name);
+  for (const auto& [name, text] : area)
+    if (!delay_names.count(name))
+      throw std::runtime_error(fmt::format("area: module {} is in the area mapping only", name));
+  for (const std::string& name : delay_names)
+    if (!area_text.count(name))
+      throw std::runtime_error(fmt::format("area: module {} is in the delay mapping only", name));
+
+  Recovery r;
+  r.modules = delay.size();
+  const fs::path netlist = work / "unit.v";
+  const auto time_choice = [&](double over_ns) {
+    std::string text = "// cdsim: structural Verilog from Yosys's write_json (app/netlist_writer.cpp), each module "
+                       "delay- or area-mapped (app/area_recovery.cpp)\n\n";
+    for (const auto& [name, delay_text] : delay)
+      text += fmt::format("// {}-mapped\n{}", r.area_modules.count(name) ? "area" : "delay",
+                          r.area_modules.count(name) ? *area_text.at(name) : delay_text);
+    write_file_atomic(netlist, text);
+    return time_netlist({netlist}, top, liberty, clock, work, over_ns);
+  };
+
+  r.delay = time_choice(0);
+  const double delay_ns = critical_ns(r.delay, netlist);
+  r.target_ns = target_ns > 0 ? target_ns : delay_ns;
+  for (const auto& [name, text] : delay) r.area_modules.insert(name);
+  for (r.rounds = 1;; ++r.rounds) {
+    r.chosen = time_choice(r.target_ns + kToleranceNs);
+    const double worst = critical_ns(r.chosen, netlist);
+    size_t moved = 0;
+    for (const auto& [cell, type] : r.chosen.over_path_cells)
+      moved += r.area_modules.erase(module_of_cell(r.chosen, cell, top));
+    if (progress)
+      progress(fmt::format("area recovery, round {}: worst path {:.2f} ns against {:.2f}; {} of {} modules "
+                           "area-mapped{}", r.rounds, worst, r.target_ns, r.area_modules.size() + moved, r.modules,
+                           moved ? fmt::format(", {} back to the delay mapping", moved) : ""));
+    if (worst <= r.target_ns + kToleranceNs) break;
+    if (moved == 0 || r.rounds == kMaxRounds) {
+      // What is left over the target is the delay mapping's own (a target
+      // beyond the clock it reaches), or the search did not settle: unless
+      // the mix is no slower than the all-delay netlist, take that.
+      if (worst > delay_ns + kToleranceNs) {
+        r.area_modules.clear();
+        r.fell_back = true;
+        r.chosen = time_choice(0);
+      }
+      break;
+    }
+  }
+  return r;
+}
+
+}  // namespace cdsim
