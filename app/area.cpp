@@ -48,7 +48,7 @@ namespace {
 // Bumped whenever the flow below changes, so that cached results are redone.
 constexpr const char* kFlowVersion = "area-flow-7";
 // And of the recovering flow on top of it (`--flow recover`).
-constexpr const char* kRecoverFlowVersion = "recover-1";
+constexpr const char* kRecoverFlowVersion = "recover-3";
 
 // Yosys writes "=== cd_scan_unit ===" but "Chip area for module '\cd_scan_unit'".
 std::string strip_escape(const std::string& name) {
@@ -673,6 +673,10 @@ std::string table_timing_model(const UnitConfig& config) {
 AreaReport synthesise_area(const Design& design, const Widths& widths, const AreaOptions& options) {
   // The component model is calibrated on the scan unit's designs: the
   // adaptive design's unit, with its split engine, is always synthesised.
+  if (options.estimate && options.flow != "delay")
+    throw std::invalid_argument(fmt::format("the component area model is calibrated on the delay flow, not the {} "
+                                            "flow: synthesise instead (without --model / --area-model)",
+                                            options.flow));
   if (options.estimate && rtl_top(design) == RtlTop::ScanUnit) return estimate_area(design, widths, options);
   if (options.estimate && !options.quiet)
     std::cerr << fmt::format("area: {}: the component model does not cover its unit; synthesising it\n",
@@ -705,7 +709,16 @@ AreaReport synthesise_area(const Design& design, const Widths& widths, const Are
               "setattr -mod -set keep_hierarchy 1 *\nsetattr -mod -unset keep_hierarchy scanline_table\n"
               "flatten\nsetattr -mod -unset keep_hierarchy *\n", fmt::arg("W", work.string())) : ""));
     };
-    write_file_atomic(work / "unit.ys", config.unit_front(work) + fmt::format(
+    // The recovering flow also flattens the rounding shifters (shift_round)
+    // into the modules that use them, but the top's (its "output rounding"
+    // block): most shift by a constant, which crosses no port, and the
+    // correction adder at narrow widths maps 13% smaller flattened
+    // (docs/area.md, "Area recovery").
+    const std::string flatten_rounding =
+        recover ? fmt::format("setattr -mod -set keep_hierarchy 1 *\nsetattr -mod -unset keep_hierarchy *shift_round*\n"
+                              "flatten {} %n\nsetattr -mod -unset keep_hierarchy *\n", config.top)
+                : "";
+    write_file_atomic(work / "unit.ys", config.unit_front(work) + flatten_rounding + fmt::format(
         "proc\n"
         "select -assert-none t:$dlatch t:$adlatch t:$dlatchsr t:$sr\n"
         "opt -fast\n"
@@ -891,7 +904,8 @@ std::string area_table(const std::vector<AreaReport>& reports, const AreaOptions
   std::string out = fmt::format(
       "area: {} onto {} (NAND2X1 = {} um^2), SRAM at {} um^2 per bit / {} efficiency, x {:.3g} where "
       "two-port (2p: early_walk) (docs/area.md)\n",
-      options.estimate ? "the component area model, calibrated by Yosys," : "Yosys",
+      options.estimate ? "the component area model, calibrated by Yosys,"
+                       : fmt::format("Yosys, flow {}", options.flow),
       fs::path(options.liberty).filename().string(), nand2_area_um2(options), options.sram_cell_um2,
       options.sram_efficiency, options.sram_two_port_factor);
   const bool rates = px_per_clk.size() == reports.size();
@@ -941,6 +955,15 @@ std::vector<AreaReport> synthesise_areas(const std::vector<AreaJob>& list, const
   return out;
 }
 
+CLI::Option* add_area_flow_option(CLI::App* cmd, std::string& flow, const std::string& name) {
+  return cmd->add_option(name, flow,
+                         "synthesis flow: delay, ABC at its delay corner everywhere; recover, each module also "
+                         "mapped for area, and kept so where no path over the clock (cdsim area --clock-mhz, else "
+                         "the delay flow's f_max) runs through it (docs/area.md)")
+      ->check(CLI::IsMember({"delay", "recover"}))
+      ->capture_default_str();
+}
+
 CLI::App* add_area_command(CLI::App& app, AreaOptions& options) {
   CLI::App* cmd = app.add_subcommand(
       "area", "synthesise the unit with Yosys onto osu018 cells: area per block, table as SRAM");
@@ -955,12 +978,7 @@ CLI::App* add_area_command(CLI::App& app, AreaOptions& options) {
                   "map for this clock (ABC's delay target: faster gates where the period needs them, more area) "
                   "and say whether the timing meets it")
       ->check(CLI::Range(1.0, 2000.0));
-  cmd->add_option("--flow", options.flow,
-                  "delay: ABC at its delay corner everywhere; recover: each module also mapped for area, "
-                  "and kept so where no path over the clock (--clock-mhz, else the delay flow's f_max) "
-                  "runs through it (docs/area.md)")
-      ->check(CLI::IsMember({"delay", "recover"}))
-      ->capture_default_str();
+  add_area_flow_option(cmd, options.flow, "--flow");
   cmd->add_flag("--model", options.estimate,
                 "estimate by the component area model (an elaboration of about 5 s, no mapping) "
                 "instead of synthesising; cdsim area-model calibrates it");
@@ -990,7 +1008,7 @@ int run_area_command(const AreaOptions& options) {
   const Design& design = find_design(options.design);
   const AreaReport r = synthesise_area(design, widths, options);
   fmt::print("area of {} at {}\n", r.design, describe(r.widths));
-  fmt::print("build {}, liberty {}, {}\n", kBuildRevision, options.liberty,
+  fmt::print("build {}, liberty {}, flow {}, {}\n", kBuildRevision, options.liberty, r.estimated ? "-" : r.flow,
              r.estimated ? fmt::format("estimated by the component area model {} (docs/area.md; "
                                        "elaborated in {:.0f} s)", r.log_path, r.synthesis_seconds)
              : r.cached  ? fmt::format("cached (synthesised in {:.0f} s)", r.synthesis_seconds)

@@ -120,6 +120,9 @@ std::string area_table(const std::vector<AreaReport>& reports, const AreaOptions
                        const std::vector<double>& px_per_clk = {});
 
 CLI::App* add_area_command(CLI::App& app, AreaOptions& options);
+// `name` (--flow, or --area-flow where the command has flows of its own):
+// AreaOptions::flow, "delay" or "recover".
+CLI::Option* add_area_flow_option(CLI::App* cmd, std::string& flow, const std::string& name = "--area-flow");
 int run_area_command(const AreaOptions& options);
 
 }  // namespace cdsim

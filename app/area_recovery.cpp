@@ -20,7 +20,7 @@ constexpr double kToleranceNs = 0.001;
 // A round that moves modules to the delay mapping removes the paths through
 // them; each round moves at least one, so this bounds a search that would
 // otherwise end anyway, and keeps a pathological netlist from timing for hours.
-constexpr int kMaxRounds = 12;
+constexpr int kMaxRounds = 16;
 
 double critical_ns(const StaReport& sta, const fs::path& netlist) {
   if (sta.endpoints.empty())
@@ -63,7 +63,7 @@ Recovery recover_area(const ModuleTexts& delay, const ModuleTexts& area, double 
       text += fmt::format("// {}-mapped\n{}", r.area_modules.count(name) ? "area" : "delay",
                           r.area_modules.count(name) ? *area_text.at(name) : delay_text);
     write_file_atomic(netlist, text);
-    return time_netlist({netlist}, top, liberty, clock, work, over_ns);
+    return time_netlist({netlist}, top, liberty, clock, work, over_ns, 200);
   };
 
   r.delay = time_choice(0);
@@ -73,9 +73,14 @@ Recovery recover_area(const ModuleTexts& delay, const ModuleTexts& area, double 
   for (r.rounds = 1;; ++r.rounds) {
     r.chosen = time_choice(r.target_ns + kToleranceNs);
     const double worst = critical_ns(r.chosen, netlist);
+    // The worst path that runs through an area-mapped module: its modules
+    // go back to the delay mapping. One path a round, so that a module
+    // that lies only on paths the first moves cure keeps its area mapping.
     size_t moved = 0;
-    for (const auto& [cell, type] : r.chosen.over_path_cells)
-      moved += r.area_modules.erase(module_of_cell(r.chosen, cell, top));
+    for (const auto& path : r.chosen.over_paths) {
+      for (const auto& [cell, type] : path) moved += r.area_modules.erase(module_of_cell(r.chosen, cell, top));
+      if (moved) break;
+    }
     if (progress)
       progress(fmt::format("area recovery, round {}: worst path {:.2f} ns against {:.2f}; {} of {} modules "
                            "area-mapped{}", r.rounds, worst, r.target_ns, r.area_modules.size() + moved, r.modules,

@@ -36,11 +36,12 @@ struct Recovery {
 
 // Chooses each module's mapping, `delay` and `area` being the same netlist
 // mapped two ways (the same modules, in any order). `target_ns` <= 0: the
-// all-delay netlist's critical path. Round by round, every module that holds
-// a cell on a path over the target (beyond 1 ps) goes back to the delay
-// mapping, until no path is over it; if a round moves no module while a path
-// is still over it and over the all-delay netlist's critical path (a target
-// no mapping meets), every module takes the delay mapping. Writes
+// all-delay netlist's critical path. Round by round, the modules that hold
+// the cells of the worst path over the target (beyond 1 ps) that runs through
+// an area-mapped module go back to the delay mapping, until no path is over
+// it; if a round moves no module (or after 16 rounds) while a path is still
+// over it and over the all-delay netlist's critical path (a target no
+// mapping meets), every module takes the delay mapping. Writes
 // `work`/unit.v, the chosen netlist, and OpenSTA's scripts and logs under
 // `work`. Throws std::runtime_error when the two netlists' modules differ.
 Recovery recover_area(const ModuleTexts& delay, const ModuleTexts& area, double target_ns, const std::string& top,

@@ -60,7 +60,8 @@ class FragmentDump {
 };
 
 int run_command(const CommonOptions& options, const std::string& json_path, bool show_worst,
-                bool with_area, const std::string& dump_path, const std::string& flagged_path, unsigned jobs) {
+                bool with_area, const std::string& area_flow, const std::string& dump_path,
+                const std::string& flagged_path, unsigned jobs) {
   const Widths widths = widths_from(options);
   const std::vector<Design> designs = designs_from(options.designs);
   if (!json_path.empty()) check_output_folder("--json", json_path);
@@ -98,7 +99,8 @@ int run_command(const CommonOptions& options, const std::string& json_path, bool
   if (!flagged_path.empty()) std::cout << flagged.table(10);
   nlohmann::json json = results_json(scene.scene, widths, results);
   if (with_area) {
-    const AreaOptions area_options;
+    AreaOptions area_options;
+    area_options.flow = area_flow;
     std::vector<AreaJob> syntheses;
     for (const Design& d : designs)
       if (has_rtl(d)) syntheses.push_back({d, widths});
@@ -260,7 +262,7 @@ int dispatch(Cli& cli) {
     if (!cli.designs_json_path.empty()) write_file_atomic(cli.designs_json_path, designs_json().dump(2) + '\n');
     return 0;
   }
-  return run_command(cli.run, cli.json_path, cli.show_worst, cli.run_area, cli.dump_path, cli.flagged_path,
+  return run_command(cli.run, cli.json_path, cli.show_worst, cli.run_area, cli.run_area_flow, cli.dump_path, cli.flagged_path,
                      static_cast<unsigned>(cli.run_jobs));
 }
 

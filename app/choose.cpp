@@ -132,6 +132,7 @@ CLI::App* add_choose_command(CLI::App& app, ChooseOptions& options) {
       ->capture_default_str();
   cmd->add_option("--rtl-cache", options.rtl_cache, "folder of verilated units (as cdsim regress)");
   cmd->add_option("--area-cache", options.area_cache, "folder of synthesis results (as cdsim area --cache)");
+  add_area_flow_option(cmd, options.area_flow);
   cmd->add_option("--jobs", options.jobs, "designs sized and configurations synthesised at a time (default: all cores)")
       ->check(CLI::Range(1u, 256u));
   return cmd;
@@ -235,8 +236,8 @@ int run_choose_command(const ChooseOptions& options) {
   for (const PreparedScene& s : scenes)
     fmt::print("scene: {} ({} triangles, {}x{}; {})\n", s.scene.name, s.scene.triangles.size(),
                s.scene.width, s.scene.height, s.scene.description);
-  fmt::print("fixed widths: {}\nbuild: {}\nseed: none (deterministic); RTL check seed 1\n\n",
-             options.settings.empty() ? "defaults" : describe(user), build_id());
+  fmt::print("fixed widths: {}\nbuild: {}\nsynthesis flow: {}\nseed: none (deterministic); RTL check seed 1\n\n",
+             options.settings.empty() ? "defaults" : describe(user), build_id(), options.area_flow);
   std::fflush(stdout);
 
   // A candidate's cycles, pixels and slowest scene, from its results per scene.
@@ -298,6 +299,7 @@ int run_choose_command(const ChooseOptions& options) {
   // Synthesise every design that meets the target and has RTL.
   AreaOptions area_options;
   area_options.cache_dir = options.area_cache;
+  area_options.flow = options.area_flow;
   std::vector<AreaJob> jobs;
   // A design below the rate is not synthesised: no area makes it fast enough.
   for (const Candidate& c : candidates)
@@ -448,7 +450,7 @@ int run_choose_command(const ChooseOptions& options) {
     json["target"] = {{"max_error", options.max_error}, {"metric", options.metric},
                       {"statistic", options.statistic}, {"max_slowdown", options.max_slowdown},
                       {"min_rate", options.min_rate}, {"clock_mhz", options.clock_mhz},
-                      {"pipeline_steps", options.pipeline_steps}};
+                      {"pipeline_steps", options.pipeline_steps}, {"area_flow", options.area_flow}};
     json["scenes"] = nlohmann::json::array();
     for (const PreparedScene& s : scenes)
       json["scenes"].push_back({{"name", s.scene.name}, {"triangles", s.scene.triangles.size()},

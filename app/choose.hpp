@@ -34,6 +34,7 @@ struct ChooseOptions {
   size_t verify_random = 500;
   double verify_backpressure = 0.3;
   std::string rtl_cache, area_cache;
+  std::string area_flow = "delay";  // --area-flow: AreaOptions::flow
   unsigned jobs = 0;           // designs sized, and syntheses, at a time (0: all cores)
 };
 

@@ -23,6 +23,7 @@ std::unique_ptr<Cli> make_cli() {
   cli->run_command->add_flag("--area", cli->run_area,
                              "also synthesise each design at these widths (cdsim area, cached; "
                              "all cores) and report its area");
+  add_area_flow_option(cli->run_command, cli->run_area_flow);
   cli->run_command->add_option("--jobs", cli->run_jobs, "designs evaluated at a time (default: all cores)")
       ->check(cli::integer_in(1, 1024));
 

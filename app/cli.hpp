@@ -29,6 +29,7 @@ struct Cli {
   std::string dump_path;       // run --dump
   std::string flagged_path;    // run --flagged
   bool run_area = false;       // run --area
+  std::string run_area_flow = "delay";  // run --area-flow
   int run_jobs = 0;            // run --jobs (0: all cores)
   double bench_seconds = 1.0;  // bench --seconds
   std::string sv_path;         // widths --sv

@@ -71,9 +71,11 @@ StaReport parse_sta_log(const std::string& log, double clock_period_ns) {
       if (std::regex_search(line, m, start) && report.worst_from.empty()) report.worst_from = m[1];
       if (std::regex_search(line, m, end) && report.worst_to.empty()) report.worst_to = m[1];
       report.worst_path += line + "\n";
-    } else if (section == Section::Over && std::regex_match(line, m, path_pin)) {
+    } else if (section == Section::Over && std::regex_search(line, m, start)) {
+      report.over_paths.emplace_back();
+    } else if (section == Section::Over && std::regex_match(line, m, path_pin) && !report.over_paths.empty()) {
       const std::string type = m[2];
-      if (type.rfind("DFF", 0) != 0 && type.rfind("LATCH", 0) != 0) report.over_path_cells.emplace_back(m[1], type);
+      if (type.rfind("DFF", 0) != 0 && type.rfind("LATCH", 0) != 0) report.over_paths.back().emplace_back(m[1], type);
     }
   }
   if (section != Section::Tail) throw std::runtime_error("the timing report stops early");

@@ -25,10 +25,10 @@ struct StaReport {
   std::vector<StaEndpoint> endpoints;  // every flip-flop data pin a path reaches, worst first
   std::string worst_from, worst_to;    // the worst path's start and end points ("" when none)
   std::string worst_path;              // OpenSTA's report of that path
-  // With time_netlist's `over_ns`: the logic cells (flip-flops left out) on
-  // the worst path into each endpoint whose period is over it, as
-  // (hierarchical cell name, cell type): ("u_setup_engine/_5807_", "OAI21X1").
-  std::vector<std::pair<std::string, std::string>> over_path_cells;
+  // With time_netlist's `over_ns`: the worst path into each endpoint whose
+  // period is over it, worst first, each as its logic cells (flip-flops left
+  // out): (hierarchical cell name, cell type), ("u_setup_engine/_5807_", "OAI21X1").
+  std::vector<std::vector<std::pair<std::string, std::string>>> over_paths;
   double seconds = 0;
 };
 

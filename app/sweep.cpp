@@ -209,6 +209,7 @@ CLI::App* add_sweep_command(CLI::App& app, SweepOptions& options) {
                   "as --area, but by the component area model (cdsim area --model: an elaboration "
                   "of about 5 s, calibrated by cdsim area-model) instead of full synthesis")
       ->excludes(area_flag);
+  add_area_flow_option(sweep, options.area_flow);
   sweep->add_option("--shard", options.shard,
                     "I/N: run only the I-th of N shards (every N-th configuration from the I-th); "
                     "cdsim merge joins the shards' folders into the whole sweep's files");
@@ -301,6 +302,7 @@ int run_sweep_command(const SweepOptions& options) {
     std::fflush(stdout);
     AreaOptions area_options;
     area_options.estimate = options.area_model;
+    area_options.flow = options.area_flow;
     const std::vector<AreaReport> reports = synthesise_areas(jobs_list, area_options, jobs);
     for (size_t k = 0; k < rows.size(); ++k) areas[rows[k]] = reports[k];
   }

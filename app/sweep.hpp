@@ -25,6 +25,7 @@ struct SweepOptions {
   bool yes = false;      // run more than kSweepConfirmLimit configurations
   bool area = false;     // also synthesise each distinct configuration (cdsim area, cached)
   bool area_model = false;  // area by the component area model instead (area_model.hpp)
+  std::string area_flow = "delay";  // --area-flow: AreaOptions::flow
   std::string shard;     // "I/N": only the configurations of that shard (cdsim merge joins them)
 };
 
