@@ -48,7 +48,7 @@ namespace {
 // Bumped whenever the flow below changes, so that cached results are redone.
 constexpr const char* kFlowVersion = "area-flow-7";
 // And of the recovering flow on top of it (`--flow recover`).
-constexpr const char* kRecoverFlowVersion = "recover-3";
+constexpr const char* kRecoverFlowVersion = "recover-4";
 
 // Yosys writes "=== cd_scan_unit ===" but "Chip area for module '\cd_scan_unit'".
 std::string strip_escape(const std::string& name) {
@@ -721,10 +721,15 @@ AreaReport synthesise_area(const Design& design, const Widths& widths, const Are
     write_file_atomic(work / "unit.ys", config.unit_front(work) + flatten_rounding + fmt::format(
         "proc\n"
         "select -assert-none t:$dlatch t:$adlatch t:$dlatchsr t:$sr\n"
-        "opt -fast\n"
+        "{opt}\n"
         "select -assert-none t:$div t:$mod t:$divfloor t:$modfloor\n"
-        "wreduce\ntee -q -o {W}/multiplies.il dump t:$mul\nalumacc\nopt -fast\nmemory -nomap\ntechmap\n"
-        "dfflibmap -liberty {L}\n", fmt::arg("L", L), fmt::arg("W", work.string())) +
+        "wreduce\ntee -q -o {W}/multiplies.il dump t:$mul\n{coarse}memory -nomap\n{after}techmap\n"
+        "dfflibmap -liberty {L}\n", fmt::arg("L", L), fmt::arg("W", work.string()),
+        // The recovering flow runs synth's coarse word-level passes (the
+        // column walker at narrow widths maps 7% smaller with them).
+        fmt::arg("opt", recover ? "opt" : "opt -fast"),
+        fmt::arg("coarse", recover ? "peepopt\nopt_clean\nalumacc\nshare\nopt\n" : "alumacc\nopt -fast\n"),
+        fmt::arg("after", recover ? "opt_clean\nopt -fast -full\n" : "")) +
         (recover ? "design -save flops_mapped\n" + map_logic("abc.script", "unit_delay.json") +
                    "design -load flops_mapped\n" + map_logic("abc_area.script", "unit.json")
                  : map_logic("abc.script", "unit.json")));
