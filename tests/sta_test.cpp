@@ -46,7 +46,7 @@ class Sta : public ::testing::Test {
   // launch -> K inverters -> capture; with `pipelined`, a third flip-flop
   // after the first K / 2 inverters. In module `sub` when `wrap` is given,
   // instanced as u_sub in the top.
-  cdsim::StaReport time_chain(int k, bool pipelined, const std::string& wrap = "") {
+  cdsim::StaReport time_chain(int k, bool pipelined, const std::string& wrap = "", double over_ns = 0) {
     std::string body;
     body += "  DFFPOSX1 launch (.CLK(clk_i), .D(d_i), .Q(n0));\n";
     for (int i = 1; i <= k; ++i) {
@@ -68,7 +68,7 @@ class Sta : public ::testing::Test {
     }
     const fs::path file = dir_ / "chain.v";
     cdsim::write_file_atomic(file, netlist);
-    return cdsim::time_netlist({file}, "chain", kLiberty, "clk_i", dir_);
+    return cdsim::time_netlist({file}, "chain", kLiberty, "clk_i", dir_, over_ns);
   }
 
   fs::path dir_;
@@ -108,6 +108,24 @@ TEST_F(Sta, APathCountsInTheBlockThatHoldsItsEnd) {
   EXPECT_EQ(r.instance_module.at("u_sub"), "column_walker");
   EXPECT_EQ(cdsim::area_detail::block_of_pin(r.instance_module, r.endpoints[0].pin), "column walker");
   EXPECT_EQ(cdsim::area_detail::block_of_pin(r.instance_module, "capture/D"), "control");
+}
+
+// The recovering flow's input: the logic cells of the paths over a period,
+// by their hierarchical names, the flip-flops left out.
+TEST_F(Sta, APathOverThePeriodListsItsLogicCells) {
+  const cdsim::StaReport over = time_chain(8, false, "column_walker", 0.1);
+  ASSERT_EQ(over.over_paths.size(), 1u);
+  ASSERT_EQ(over.over_paths[0].size(), 8u) << "the eight inverters, not the two flip-flops";
+  for (int i = 0; i < 8; ++i) {
+    EXPECT_EQ(over.over_paths[0][static_cast<size_t>(i)].first, "u_sub/inv" + std::to_string(i + 1));
+    EXPECT_EQ(over.over_paths[0][static_cast<size_t>(i)].second, "INVX1");
+  }
+  EXPECT_EQ(cdsim::module_of_cell(over, "u_sub/inv1", "chain"), "column_walker");
+  EXPECT_EQ(cdsim::module_of_cell(over, "inv1", "chain"), "chain");
+  EXPECT_THROW(cdsim::module_of_cell(over, "u_none/inv1", "chain"), std::runtime_error);
+  const double path = over.endpoints.at(0).period_ns;
+  EXPECT_TRUE(time_chain(8, false, "column_walker", path + 0.01).over_paths.empty()) << "a path " << path << " ns";
+  EXPECT_TRUE(time_chain(8, false, "column_walker").over_paths.empty()) << "not asked for";
 }
 
 TEST_F(Sta, AnUnknownCellIsAnErrorNotABlackBox) {
