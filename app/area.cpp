@@ -48,7 +48,7 @@ namespace {
 // Bumped whenever the flow below changes, so that cached results are redone.
 constexpr const char* kFlowVersion = "area-flow-7";
 // And of the recovering flow on top of it (`--flow recover`).
-constexpr const char* kRecoverFlowVersion = "recover-4";
+constexpr const char* kRecoverFlowVersion = "recover-5";
 
 // Yosys writes "=== cd_scan_unit ===" but "Chip area for module '\cd_scan_unit'".
 std::string strip_escape(const std::string& name) {

@@ -14,9 +14,14 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// OpenSTA's endpoint periods are read to 0.1 ps; a path this much over the
-// target is over it.
-constexpr double kToleranceNs = 0.001;
+// A path more than this over the target (0.5%, and 1 ps for OpenSTA's
+// rounding) is over it. Not zero: an area-mapped module loads the nets that
+// enter it differently, so a path through delay-mapped modules alone can
+// end a little over the all-delay netlist's (quad-sub8 at narrow widths:
+// 28.48 ns against 28.35, +0.46%), and no move of the path's own modules
+// cures that.
+constexpr double kTolerance = 0.005;
+double over(double target_ns) { return target_ns * (1 + kTolerance) + 0.001; }
 // A round that moves modules to the delay mapping removes the paths through
 // them; each round moves at least one, so this bounds a search that would
 // otherwise end anyway, and keeps a pathological netlist from timing for hours.
@@ -71,7 +76,7 @@ Recovery recover_area(const ModuleTexts& delay, const ModuleTexts& area, double 
   r.target_ns = target_ns > 0 ? target_ns : delay_ns;
   for (const auto& [name, text] : delay) r.area_modules.insert(name);
   for (r.rounds = 1;; ++r.rounds) {
-    r.chosen = time_choice(r.target_ns + kToleranceNs);
+    r.chosen = time_choice(over(r.target_ns));
     const double worst = critical_ns(r.chosen, netlist);
     // The worst path that runs through an area-mapped module: its modules
     // go back to the delay mapping. One path a round, so that a module
@@ -85,12 +90,12 @@ Recovery recover_area(const ModuleTexts& delay, const ModuleTexts& area, double 
       progress(fmt::format("area recovery, round {}: worst path {:.2f} ns against {:.2f}; {} of {} modules "
                            "area-mapped{}", r.rounds, worst, r.target_ns, r.area_modules.size() + moved, r.modules,
                            moved ? fmt::format(", {} back to the delay mapping", moved) : ""));
-    if (worst <= r.target_ns + kToleranceNs) break;
+    if (worst <= over(r.target_ns)) break;
     if (moved == 0 || r.rounds == kMaxRounds) {
       // What is left over the target is the delay mapping's own (a target
       // beyond the clock it reaches), or the search did not settle: unless
       // the mix is no slower than the all-delay netlist, take that.
-      if (worst > delay_ns + kToleranceNs) {
+      if (worst > over(delay_ns)) {
         r.area_modules.clear();
         r.fell_back = true;
         r.chosen = time_choice(0);

@@ -37,7 +37,7 @@ struct Recovery {
 // Chooses each module's mapping, `delay` and `area` being the same netlist
 // mapped two ways (the same modules, in any order). `target_ns` <= 0: the
 // all-delay netlist's critical path. Round by round, the modules that hold
-// the cells of the worst path over the target (beyond 1 ps) that runs through
+// the cells of the worst path over the target (by more than 0.5%) that runs through
 // an area-mapped module go back to the delay mapping, until no path is over
 // it; if a round moves no module (or after 16 rounds) while a path is still
 // over it and over the all-delay netlist's critical path (a target no

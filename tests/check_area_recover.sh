@@ -6,7 +6,7 @@
 # the rounding shifters flattened (which only removes logic), so its
 # all-delay logic must be no more than the delay flow's and its all-delay
 # critical path (its target) within 5% of the delay flow's; the unit it
-# chooses must meet that target (1 ps), cost less logic than both, and no less
+# chooses must meet that target (within 0.5%: docs/area.md), cost less logic than both, and no less
 # than every module area-mapped; the blocks sum to the logic, are the delay
 # flow's blocks, and hold no more flip-flops. Bad flows are refused.
 # Usage: check_area_recover.sh CDSIM WORKDIR DESIGN "SETTINGS"
@@ -38,8 +38,8 @@ expect(rc["delay_mapped_logic_um2"] <= d["logic_area_um2"],
 expect(abs(rc["target_ns"] - d["critical_path_ns"]) <= 0.05 * d["critical_path_ns"],
        f"the target, its all-delay critical path ({rc['target_ns']:.3f} ns), within 5% of the delay flow's "
        f"({d['critical_path_ns']:.3f})")
-expect(r["critical_path_ns"] <= rc["target_ns"] + 0.001,
-       f"the target is met: {r['critical_path_ns']:.3f} ns")
+expect(r["critical_path_ns"] <= rc["target_ns"] * 1.005 + 0.001,
+       f"the target is met within 0.5%: {r['critical_path_ns']:.3f} ns")
 expect(r["logic_area_um2"] < rc["delay_mapped_logic_um2"],
        f"less logic than all delay-mapped ({r['logic_area_um2']:.0f} um^2)")
 expect(r["logic_area_um2"] < d["logic_area_um2"],

@@ -243,7 +243,7 @@ TEST_F(Recovery, TheModuleWithSlackTakesTheAreaMappingAndTheClockStays) {
   EXPECT_FALSE(r.fell_back);
   EXPECT_EQ(r.area_modules.count("narrow"), 1u);
   EXPECT_EQ(r.area_modules.count("wide"), 0u);
-  EXPECT_LE(r.chosen.endpoints.at(0).period_ns, delay_ns + 0.001);
+  EXPECT_LE(r.chosen.endpoints.at(0).period_ns, delay_ns * 1.005 + 0.001);
   EXPECT_GE(r.rounds, 2) << "the first round, all area-mapped, is over the target";
   // The chosen netlist as written: the wide adder's text is the delay mapping's.
   const std::string chosen = cdsim::read_text_file(dir_ / "mixed" / "unit.v");
