@@ -61,13 +61,15 @@ Recovery recover_area(const ModuleTexts& delay, const ModuleTexts& area, double 
   Recovery r;
   r.modules = delay.size();
   const fs::path netlist = work / "unit.v";
-  const auto time_choice = [&](double over_ns) {
-    std::string text = "// cdsim: structural Verilog from Yosys's write_json (app/netlist_writer.cpp), each module "
-                       "delay- or area-mapped (app/area_recovery.cpp)\n\n";
+  // The netlist of the current choice, each module's text from its mapping.
+  const auto write_choice = [&] {
+    ModuleTexts chosen;
     for (const auto& [name, delay_text] : delay)
-      text += fmt::format("// {}-mapped\n{}", r.area_modules.count(name) ? "area" : "delay",
-                          r.area_modules.count(name) ? *area_text.at(name) : delay_text);
-    write_file_atomic(netlist, text);
+      chosen.emplace_back(name, r.area_modules.count(name) ? *area_text.at(name) : delay_text);
+    write_file_atomic(netlist, verilog_from_modules(chosen));
+  };
+  const auto time_choice = [&](double over_ns) {
+    write_choice();
     return time_netlist({netlist}, top, liberty, clock, work, over_ns, 200);
   };
 
@@ -98,7 +100,8 @@ Recovery recover_area(const ModuleTexts& delay, const ModuleTexts& area, double 
       if (worst > over(delay_ns)) {
         r.area_modules.clear();
         r.fell_back = true;
-        r.chosen = time_choice(0);
+        write_choice();
+        r.chosen = r.delay;  // timed already
       }
       break;
     }
